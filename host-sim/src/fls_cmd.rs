@@ -1,0 +1,309 @@
+//! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
+//! spreadsheets (`csv`) or for programs (`json`).
+
+use crate::CliError;
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use softgrip::fls::{EllipseFit, RadialGap};
+use softgrip::{
+    ConfigError, FlsConfig, FlsModel, FlsPoint, FlsTable, QuadratureOrder, Real, Shape,
+};
+use std::io::Write;
+
+/// Largest `--samples`: the sweep table's fixed capacity less its closing point.
+pub const MAX_SAMPLES: usize = 4096;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ShapeArg {
+    /// Hemicylindrical fingertip: rectangular patch `[-l, l] × [-a, a]`.
+    Rect,
+    /// Hemispherical fingertip: disc of radius `a`.
+    Disc,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Aligned columns for people.
+    Table,
+    /// Comma-separated values with a header row.
+    Csv,
+    /// One JSON object.
+    Json,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Precision {
+    /// Double precision (default).
+    F64,
+    /// Single precision, as on the Cortex-M4F.
+    F32,
+}
+
+/// Arguments of `host-sim fls`.
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct FlsArgs {
+    /// Patch shape.
+    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
+    shape: ShapeArg,
+    /// Pressure exponent k >= 1 (`inf` for uniform pressure).
+    #[arg(long, default_value_t = 2.0)]
+    k: f64,
+    /// Aspect ratio l/a of the rectangle (ignored for the disc).
+    #[arg(long, default_value_t = 1.0)]
+    aspect: f64,
+    /// Largest skew of the pressure peak, Δ/a in [0, 1); 0 is the symmetric profile.
+    #[arg(long, default_value_t = 0.0)]
+    skew: f64,
+    /// Rate α of the skew law Δy = Δ·tanh(α d_c/a).
+    #[arg(long, default_value_t = 1.1)]
+    alpha: f64,
+    /// Half-axis h/a of the peak's locus (Eq. 16); default Δ/2, the paper's circular path.
+    #[arg(long)]
+    locus: Option<f64>,
+    /// Evaluate at these d_c/a (comma-separated) instead of along the sweep.
+    #[arg(long, value_delimiter = ',')]
+    at: Vec<f64>,
+    /// Number of sweep samples (the ellipse fit always uses the sweep).
+    #[arg(long, default_value_t = 64)]
+    samples: usize,
+    /// Tanh-sinh nodes on each side of an interval's centre.
+    #[arg(long, default_value_t = QuadratureOrder::DEFAULT.nodes_per_side())]
+    order: usize,
+    /// Arithmetic of the computation.
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    precision: Precision,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    format: Format,
+}
+
+#[derive(Debug, Serialize)]
+struct Sample {
+    d: f64,
+    f: f64,
+    m: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct EllipseOut {
+    /// Least-squares semi-axis along f̃.
+    f_semi_axis: f64,
+    /// Least-squares semi-axis along m̃.
+    m_semi_axis: f64,
+    /// RMS residual of the fit.
+    rms_residual: f64,
+    /// Largest radial gap between the exact surface and the Eq. 10 ellipse.
+    max_radial_gap: f64,
+    /// That gap over the ellipse's radius.
+    max_relative_gap: f64,
+    /// Where the gap is largest.
+    max_gap_at: Sample,
+    /// How far the exact surface pokes outside the ellipse (0 if it never does).
+    max_outside: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct Report {
+    shape: &'static str,
+    k: f64,
+    aspect: Option<f64>,
+    skew: f64,
+    alpha: f64,
+    locus: Option<f64>,
+    precision: &'static str,
+    order: usize,
+    pitch: f64,
+    /// Whether each ray from the origin meets the swept curve once (needed for table lookup).
+    star_shaped: bool,
+    ellipse: EllipseOut,
+    samples: Vec<Sample>,
+}
+
+fn usage(e: ConfigError) -> CliError {
+    CliError::Usage(format!("--{e}"))
+}
+
+fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
+    Sample {
+        d: p.d.to_f64(),
+        f: p.f.to_f64(),
+        m: p.m.to_f64(),
+    }
+}
+
+/// Validates the arguments into a limit-surface configuration.
+fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
+    let order = QuadratureOrder::new(args.order).map_err(usage)?;
+    let shape = match args.shape {
+        ShapeArg::Rect => Shape::Rect {
+            aspect: args.aspect,
+        },
+        ShapeArg::Disc => Shape::Disc,
+    };
+    for (name, v) in [("alpha", args.alpha), ("aspect", args.aspect)] {
+        if !v.is_finite() {
+            return Err(CliError::Usage(format!(
+                "--{name}: must be a finite number"
+            )));
+        }
+    }
+    let skew = if args.skew.is_nan() || args.skew != 0.0 {
+        Some((args.skew, args.alpha, args.locus.unwrap_or(args.skew / 2.0)))
+    } else {
+        if let Some(h) = args.locus {
+            if !h.is_finite() || h < 0.0 {
+                return Err(CliError::Usage(format!(
+                    "--locus: {h} is out of range, expected locus >= 0"
+                )));
+            }
+        }
+        None
+    };
+    if !(2..=MAX_SAMPLES).contains(&args.samples) {
+        return Err(CliError::Usage(format!(
+            "--samples: {} is out of range, expected 2 ..= {MAX_SAMPLES}",
+            args.samples
+        )));
+    }
+    for &d in &args.at {
+        if !(d.is_finite() && d >= 0.0) {
+            return Err(CliError::Usage(format!(
+                "--at: {d} is out of range, expected finite d_c/a >= 0"
+            )));
+        }
+    }
+    Ok(FlsConfig {
+        shape,
+        k: args.k,
+        skew,
+        order,
+    })
+}
+
+/// Runs `host-sim fls`.
+pub fn run(args: &FlsArgs) -> Result<(), CliError> {
+    let cfg = config(args)?;
+    match args.precision {
+        Precision::F64 => run_in::<f64>(args, cfg),
+        Precision::F32 => run_in::<f32>(args, cfg),
+    }
+}
+
+fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
+    let model = FlsModel::<T>::new(cfg).map_err(usage)?;
+    let table: Box<FlsTable<T, { MAX_SAMPLES + 1 }>> =
+        Box::new(FlsTable::sweep(&model, args.samples).map_err(usage)?);
+    let fit = EllipseFit::fit(table.points())
+        .ok_or_else(|| CliError::Failed("the sweep does not determine an ellipse".into()))?;
+    let gap = RadialGap::find(&model, &table);
+    let samples: Vec<Sample> = if args.at.is_empty() {
+        table
+            .points()
+            .iter()
+            .filter(|p| p.d.is_finite())
+            .map(sample)
+            .collect()
+    } else {
+        args.at
+            .iter()
+            .map(|&d| sample(&model.point(T::of(d))))
+            .collect()
+    };
+    let report = Report {
+        shape: cfg.shape.name(),
+        k: args.k,
+        aspect: matches!(cfg.shape, Shape::Rect { .. }).then_some(args.aspect),
+        skew: args.skew,
+        alpha: args.alpha,
+        locus: cfg.skew.map(|s| s.2),
+        precision: match args.precision {
+            Precision::F64 => "f64",
+            Precision::F32 => "f32",
+        },
+        order: args.order,
+        pitch: table.pitch().to_f64(),
+        star_shaped: table.is_star_shaped(),
+        ellipse: EllipseOut {
+            f_semi_axis: fit.f_semi_axis.to_f64(),
+            m_semi_axis: fit.m_semi_axis.to_f64(),
+            rms_residual: fit.rms_residual.to_f64(),
+            max_radial_gap: gap.max_gap.to_f64(),
+            max_relative_gap: gap.max_relative_gap.to_f64(),
+            max_gap_at: sample(&gap.at),
+            max_outside: gap.max_outside.to_f64(),
+        },
+        samples,
+    };
+    let mut out = std::io::stdout().lock();
+    let written = match args.format {
+        Format::Json => serde_json::to_writer_pretty(&mut out, &report)
+            .map_err(std::io::Error::other)
+            .and_then(|()| writeln!(out)),
+        Format::Csv => write_csv(&mut out, &report),
+        Format::Table => write_table(&mut out, &report),
+    };
+    written.map_err(|e| CliError::Failed(format!("writing the output: {e}")))
+}
+
+fn write_csv(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
+    writeln!(out, "d_over_a,f_over_mu_n,m_over_mu_n_a")?;
+    for s in &r.samples {
+        writeln!(out, "{:e},{:e},{:e}", s.d, s.f, s.m)?;
+    }
+    Ok(())
+}
+
+fn write_table(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
+    let aspect = r.aspect.map_or(String::new(), |a| format!(", l/a = {a}"));
+    let skew = if r.skew > 0.0 {
+        format!(
+            ", skew Δ/a = {}, α = {}, locus h/a = {}",
+            r.skew,
+            r.alpha,
+            r.locus.unwrap_or(0.0)
+        )
+    } else {
+        ", no skew".to_string()
+    };
+    writeln!(
+        out,
+        "# friction limit surface: {} patch, k = {}{aspect}{skew} ({}, order {})",
+        r.shape, r.k, r.precision, r.order
+    )?;
+    writeln!(out, "# pitch m̃(0) (Eq. 22)           {:.10}", r.pitch)?;
+    writeln!(
+        out,
+        "# least-squares ellipse         f̃ semi-axis {:.6}, m̃ semi-axis {:.6} (rms residual {:.2e})",
+        r.ellipse.f_semi_axis, r.ellipse.m_semi_axis, r.ellipse.rms_residual
+    )?;
+    writeln!(
+        out,
+        "# largest gap to Eq. 10 ellipse {:.6} ({:.3} % of its radius) at d_c/a = {:.4}",
+        r.ellipse.max_radial_gap,
+        100.0 * r.ellipse.max_relative_gap,
+        r.ellipse.max_gap_at.d
+    )?;
+    if !r.star_shaped {
+        writeln!(
+            out,
+            "# the swept curve is not star-shaped: a ray from the origin meets it twice"
+        )?;
+    }
+    if r.ellipse.max_outside > 0.0 {
+        writeln!(
+            out,
+            "# the surface leaves the ellipse by up to {:.6} (strong skew)",
+            r.ellipse.max_outside
+        )?;
+    }
+    writeln!(
+        out,
+        "{:>16} {:>16} {:>16}",
+        "d_c/a [1]", "|f_t|/(μN) [1]", "|m_n|/(μNa) [1]"
+    )?;
+    for s in &r.samples {
+        writeln!(out, "{:>16.6e} {:>16.12} {:>16.12}", s.d, s.f, s.m)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,68 @@
+//! `host-sim`: the std side of softgrip. Today it computes friction limit surfaces
+//! (`fls`); the grasp simulator and the serial link come with later work.
+//!
+//! Exit codes: 0 on success, 2 on a bad argument (with a one-line reason naming it), 1 on
+//! any other failure.
+
+mod fls_cmd;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Host tools for the softgrip fingertip controller.
+#[derive(Debug, Parser)]
+#[command(name = "host-sim", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Sweep the friction limit surface of one fingertip configuration.
+    Fls(fls_cmd::FlsArgs),
+}
+
+/// A failure with its exit code.
+#[derive(Debug)]
+pub enum CliError {
+    /// A bad argument: exit code 2.
+    Usage(String),
+    /// Anything else: exit code 1.
+    Failed(String),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                let _ = e.print();
+                return ExitCode::from(2);
+            }
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("error: bad arguments");
+            eprintln!("{first}");
+            return ExitCode::from(2);
+        }
+    };
+    let result = match cli.command {
+        Command::Fls(args) => fls_cmd::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Usage(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(2)
+        }
+        Err(CliError::Failed(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(1)
+        }
+    }
+}

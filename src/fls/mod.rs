@@ -1,0 +1,252 @@
+//! The friction limit surface (FLS): normalised force and moment `(f̃, m̃)` that a sliding
+//! patch transmits for each position `d = d_c/a` of its centre of rotation (MODEL.md,
+//! "Sliding, friction and the limit surface"; the paper's Eq. 11–21).
+//!
+//! - [`FlsModel`] evaluates one point of the surface, by tanh-sinh quadrature split at every
+//!   singular point of the integrand (see [`rect`](self) and [`disc`](self) for the closed
+//!   forms that reduce the symmetric cases to 1-D integrals).
+//! - [`sweep`] maps `d ∈ [0, ∞)` onto `t ∈ [0, 1]` and stores a sweep in a fixed-capacity
+//!   [`FlsTable`] that a control tick can query.
+//! - [`ellipse`] gives the pitch (Eq. 22), the least-squares ellipse and the gap to Eq. 10.
+//! - [`aspect_grid`] precomputes pitches and tables over a range of aspect ratios `l/a`.
+//!
+//! Accuracy at [`QuadratureOrder::DEFAULT`] in f64: within 1e-11 of the exact integral for
+//! the symmetric profiles and within 1e-10 for the skewed ones, for every `d` including 0,
+//! the patch edge and `d → ∞` (checked in `tests/fls_accuracy.rs`). In f32 about 1e-6.
+//! Cost on an x86-64 host (see `benches/fls.rs`): one symmetric rectangle point about 1 µs;
+//! a skewed rectangle point about 5 µs; a symmetric disc point about 5 µs; a skewed disc point,
+//! a 2-D integral, about 0.5 ms.
+
+mod disc;
+mod rect;
+
+pub mod aspect_grid;
+pub mod ellipse;
+pub mod sweep;
+
+pub use aspect_grid::AspectGrid;
+pub use ellipse::{EllipseFit, RadialGap};
+pub use sweep::{FlsTable, SweepMap};
+
+use crate::error::{check, ConfigError};
+use crate::pressure::KProfile;
+use crate::quadrature::{QuadratureOrder, TanhSinh, MAX_NODES_PER_SIDE};
+use crate::real::Real;
+use crate::skew::SkewLaw;
+
+/// Beyond this `d = d_c/a` (times the patch's radius of gyration) a point is returned as the
+/// translation limit `(1, 0)`: the exact values differ from it by less than 1e-15.
+pub const FAR_FIELD_D: f64 = 1e15;
+
+/// The patch shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// Hemicylindrical fingertip: the rectangle `[-l, l] × [-a, a]`, with aspect `l/a > 0`.
+    Rect {
+        /// `λ = l/a`.
+        aspect: f64,
+    },
+    /// Hemispherical fingertip: the disc of radius `a`.
+    Disc,
+}
+
+impl Shape {
+    /// The shape's name as the command line spells it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Rect { .. } => "rect",
+            Shape::Disc => "disc",
+        }
+    }
+}
+
+/// A point of the limit surface.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FlsPoint<T> {
+    /// Centre-of-rotation distance `d_c/a` (`+∞` for pure translation).
+    pub d: T,
+    /// `f̃ = |f_t|/(μN)`.
+    pub f: T,
+    /// `m̃ = |m_n|/(μNa)`.
+    pub m: T,
+}
+
+/// What one limit surface depends on, before validation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlsConfig {
+    /// Patch shape (and aspect for the rectangle).
+    pub shape: Shape,
+    /// Pressure exponent `k ≥ 1` (`f64::INFINITY` for uniform).
+    pub k: f64,
+    /// Skew `(Δ/a, α, h/a)`, or `None` for the symmetric profile.
+    pub skew: Option<(f64, f64, f64)>,
+    /// Quadrature order.
+    pub order: QuadratureOrder,
+}
+
+impl Default for FlsConfig {
+    /// The paper's base case: rectangle, `l = a`, `k = 2`, no skew.
+    fn default() -> Self {
+        Self {
+            shape: Shape::Rect { aspect: 1.0 },
+            k: 2.0,
+            skew: None,
+            order: QuadratureOrder::DEFAULT,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Patch<T> {
+    Rect { lambda: T },
+    Disc,
+}
+
+/// A validated limit-surface model, ready to evaluate points. Build it once at start-up;
+/// [`FlsModel::point`] cannot fail.
+#[derive(Debug, Clone)]
+pub struct FlsModel<T> {
+    config: FlsConfig,
+    patch: Patch<T>,
+    profile: KProfile<T>,
+    skew: Option<SkewLaw<T>>,
+    rule: TanhSinh<T>,
+    rect_cache: [T; 2 * MAX_NODES_PER_SIDE + 1],
+    far_d: T,
+}
+
+impl<T: Real> FlsModel<T> {
+    /// Validates the configuration (parameter names `aspect`, `k`, `skew`, `alpha`, `locus`)
+    /// and precomputes the quadrature rule.
+    pub fn new(config: FlsConfig) -> Result<Self, ConfigError> {
+        let profile = KProfile::new(config.k)?;
+        let patch = match config.shape {
+            Shape::Rect { aspect } => {
+                check(
+                    "aspect",
+                    aspect,
+                    aspect > 0.0 && aspect.is_finite(),
+                    "aspect > 0",
+                )?;
+                Patch::Rect {
+                    lambda: T::of(aspect),
+                }
+            }
+            Shape::Disc => Patch::Disc,
+        };
+        let skew = match config.skew {
+            None => None,
+            Some((delta, alpha, h)) => {
+                let law = SkewLaw::new(delta, alpha, h)?;
+                if matches!(patch, Patch::Disc) {
+                    let reach = law.max_peak_radius();
+                    check(
+                        "locus",
+                        h,
+                        reach < 1.0,
+                        "a locus that keeps the peak inside the disc",
+                    )?;
+                }
+                (delta > 0.0).then_some(law)
+            }
+        };
+        let rule = TanhSinh::new(config.order);
+        let mut rect_cache = [T::zero(); 2 * MAX_NODES_PER_SIDE + 1];
+        rect::shape_cache(&rule, &profile, &mut rect_cache);
+        let far_d = T::of(FAR_FIELD_D) * SweepMap::<T>::for_shape(config.shape).scale();
+        Ok(Self {
+            config,
+            patch,
+            profile,
+            skew,
+            rule,
+            rect_cache,
+            far_d,
+        })
+    }
+
+    /// The configuration this model was built from.
+    pub fn config(&self) -> &FlsConfig {
+        &self.config
+    }
+
+    /// The same model for another aspect ratio `l/a` (rectangle only; the disc ignores it).
+    pub fn with_aspect(&self, aspect: f64) -> Result<Self, ConfigError> {
+        let mut next = self.clone();
+        if let Patch::Rect { .. } = self.patch {
+            check(
+                "aspect",
+                aspect,
+                aspect > 0.0 && aspect.is_finite(),
+                "aspect > 0",
+            )?;
+            next.patch = Patch::Rect {
+                lambda: T::of(aspect),
+            };
+            next.config.shape = Shape::Rect { aspect };
+            next.far_d = T::of(FAR_FIELD_D) * SweepMap::<T>::for_shape(next.config.shape).scale();
+        }
+        Ok(next)
+    }
+
+    /// The pressure profile.
+    pub fn profile(&self) -> &KProfile<T> {
+        &self.profile
+    }
+
+    /// The skew law, if the profile is skewed.
+    pub fn skew(&self) -> Option<&SkewLaw<T>> {
+        self.skew.as_ref()
+    }
+
+    /// The limit-surface point for the centre of rotation at `d = d_c/a`.
+    ///
+    /// Total: `d` is taken by magnitude (the surface is symmetric), NaN reads as 0, and
+    /// `d ≥ FAR_FIELD_D` times the radius of gyration (including `+∞`) gives `(1, 0)`.
+    pub fn point(&self, d: T) -> FlsPoint<T> {
+        let d = if d.is_nan() { T::zero() } else { d.abs() };
+        if d >= self.far_d {
+            return FlsPoint {
+                d,
+                f: T::one(),
+                m: T::zero(),
+            };
+        }
+        let (f, m) = match self.patch {
+            Patch::Rect { lambda } => {
+                let delta = self.skew.map_or(T::zero(), |s| s.delta_y(d));
+                let cache = (delta <= T::zero()).then_some(&self.rect_cache[..]);
+                rect::point(&self.rule, &self.profile, lambda, delta, d, cache)
+            }
+            Patch::Disc => match self.skew {
+                None => disc::symmetric_point(&self.rule, &self.profile, d),
+                Some(law) => disc::skewed_point(&self.rule, &self.profile, law.peak(d), d),
+            },
+        };
+        FlsPoint { d, f, m }
+    }
+
+    /// The characteristic pitch (Eq. 22): `m̃` at `d = 0`, where the skew law puts the peak
+    /// at the centre, so the skew cannot change it.
+    pub fn pitch(&self) -> T {
+        self.point(T::zero()).m
+    }
+}
+
+/// The closed-form pitch where one exists (MODEL.md's reference values): the disc for any
+/// `k`, and the uniform rectangle. `None` otherwise.
+pub fn closed_form_pitch(shape: Shape, k: f64) -> Option<f64> {
+    match shape {
+        Shape::Disc => {
+            Some(crate::pressure::disc_moment(k, 2.0) / crate::pressure::disc_moment(k, 1.0))
+        }
+        Shape::Rect { aspect } if k.is_infinite() => {
+            // (1/(4λ)) ∫∫ sqrt(x² + y²) over [-λ, λ] × [-1, 1].
+            let l = aspect;
+            let r = libm::hypot(l, 1.0);
+            let quarter = (2.0 * l * r + libm::asinh(l) + l * l * l * libm::asinh(1.0 / l)) / 6.0;
+            Some(quarter / l)
+        }
+        Shape::Rect { .. } => None,
+    }
+}

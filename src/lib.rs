@@ -1,0 +1,29 @@
+#![doc = include_str!("../README.md")]
+#![cfg_attr(not(test), no_std)]
+// `!(x > 0)` is how the core rejects NaN together with non-positive values, on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![cfg_attr(
+    not(test),
+    deny(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing,
+        clippy::unreachable,
+        clippy::todo
+    )
+)]
+
+pub mod contact;
+pub mod error;
+pub mod fls;
+pub mod partial_slip;
+pub mod pressure;
+pub mod quadrature;
+pub mod real;
+pub mod skew;
+
+pub use error::ConfigError;
+pub use fls::{FlsConfig, FlsModel, FlsPoint, FlsTable, Shape};
+pub use quadrature::QuadratureOrder;
+pub use real::Real;

@@ -3,8 +3,7 @@
 //! On a hemicylinder the contact half-width `a = c·N^γ` grows with the normal force while the
 //! half-length `l` stays fixed, so the shape of the limit surface changes with the load. The
 //! grid holds the pitch and a sweep table at `A` aspect ratios spaced evenly in `ln(l/a)`; a
-//! tick interpolates linearly in `ln(l/a)` between the two neighbours (and clamps outside the
-//! range). For the disc every entry is the same surface.
+//! tick interpolates in `ln(l/a)` between the two neighbours (and clamps outside the range). For the disc every entry is the same surface.
 
 use crate::error::{check, ConfigError};
 use crate::fls::{FlsModel, FlsTable};
@@ -136,31 +135,50 @@ impl<T: Real, const A: usize, const S: usize> AspectGrid<T, A, S> {
         }
     }
 
-    /// The pitch at `aspect`, interpolated linearly in `ln(l/a)`.
+    /// The pitch at `aspect`, interpolated linearly in `ln(pitch)` against `ln(l/a)` (a
+    /// local power law: the pitch grows like `l/a` on long patches and tends to a constant
+    /// on short ones). Cost: one `ln`, one `exp`.
     pub fn pitch(&self, aspect: T) -> T {
-        let pos = self.position(aspect);
-        let lo = self.entries.get(pos.index).map_or(T::zero(), |e| e.pitch);
-        let hi = self.entries.get(pos.index + 1).map_or(lo, |e| e.pitch);
-        lo + (hi - lo) * pos.weight
+        self.pitch_at(self.position(aspect))
     }
 
-    /// Utilisation of the load `(f̃, m̃)` at `aspect`: the surface radius along the load's ray
-    /// is interpolated linearly in `ln(l/a)` between the neighbouring tables.
+    fn pitch_at(&self, pos: GridPosition<T>) -> T {
+        let lo = self.entries.get(pos.index).map_or(T::zero(), |e| e.pitch);
+        let hi = self.entries.get(pos.index + 1).map_or(lo, |e| e.pitch);
+        if pos.weight == T::zero() || !(lo > T::zero() && hi > T::zero()) {
+            return lo;
+        }
+        if pos.weight == T::one() {
+            return hi;
+        }
+        (lo.ln() + (hi.ln() - lo.ln()) * pos.weight).exp()
+    }
+
+    /// Utilisation of the load `(f̃, m̃)` at `aspect`.
+    ///
+    /// The neighbouring surfaces are compared in coordinates `(f̃, m̃/pitch)`, where their
+    /// shapes differ far less than in `(f̃, m̃)` (the moment scale grows like `l/a`): the
+    /// radius along the load's ray is interpolated linearly in `ln(l/a)` there, and the
+    /// moment axis is scaled by the interpolated pitch. Cost: two table lookups, one `ln`.
     pub fn utilisation(&self, aspect: T, f: T, m: T) -> T {
         let pos = self.position(aspect);
         let Some(lo) = self.entries.get(pos.index) else {
             return T::infinity();
         };
-        let u_lo = lo.table.utilisation(f, m);
         let Some(hi) = self.entries.get(pos.index + 1) else {
-            return u_lo;
+            return lo.table.utilisation(f, m);
         };
-        let u_hi = hi.table.utilisation(f, m);
+        let w = pos.weight;
+        let pitch = self.pitch_at(pos);
+        if !(pitch > T::zero()) {
+            return T::infinity();
+        }
+        let u_lo = lo.table.utilisation(f, m * (lo.pitch / pitch));
+        let u_hi = hi.table.utilisation(f, m * (hi.pitch / pitch));
         if u_lo == T::zero() || u_hi == T::zero() {
             return T::zero();
         }
         // r = (1−w) r_lo + w r_hi with r_i = |q|/u_i.
-        let w = pos.weight;
         ((T::one() - w) / u_lo + w / u_hi).recip()
     }
 }

@@ -15,10 +15,12 @@
 )]
 
 pub mod contact;
+pub mod controller;
 pub mod error;
 pub mod fls;
 pub mod partial_slip;
 pub mod pressure;
+pub mod protocol;
 pub mod quadrature;
 pub mod real;
 pub mod skew;

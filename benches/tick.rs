@@ -1,0 +1,85 @@
+//! Cost of the controller: one tick in each mode, precision and math backend, and the
+//! start-up precomputation.
+//!
+//! Run with `cargo bench --bench tick`. Each tick benchmark cycles through 256 measurements
+//! (loads from pure translation to pure torsion, answers spread over `[N_min, N_max]` and
+//! beyond), so the median is that of a typical mix, not of one lucky load.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use softgrip::controller::{
+    Controller, ControllerConfig, Libm, Measurement, Micromath, Mode, TickMath,
+};
+use softgrip::Real;
+
+fn loads<T: Real>() -> Vec<Measurement<T>> {
+    (0..256)
+        .map(|i| {
+            let phase = i as f64 * 0.173;
+            let scale = 0.05 + 4.0 * ((i * 37 % 256) as f64 / 256.0);
+            Measurement {
+                tangential_force_n: [T::of(scale * phase.cos()), T::of(0.3 * scale * phase.sin())],
+                torsional_moment_nm: T::of(0.01 * scale * (1.0 + (1.7 * phase).sin())),
+                normal_force_n: T::of(2.0 + scale),
+                timestamp_us: 0,
+            }
+        })
+        .collect()
+}
+
+fn bench_tick<T: Real, M: TickMath<T>>(c: &mut Criterion, name: &str, mode: Mode) {
+    let cfg = ControllerConfig {
+        mode,
+        ..ControllerConfig::default()
+    };
+    let mut ctl = Controller::<T, M>::new_precomputed_in::<f64>(cfg).expect("valid");
+    let mut meas = loads::<T>();
+    let mut t = 0u64;
+    let mut i = 0usize;
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            i = (i + 1) % meas.len();
+            t += 1000;
+            let m = &mut meas[i];
+            m.timestamp_us = t;
+            black_box(ctl.tick(black_box(m)))
+        })
+    });
+}
+
+fn ticks(c: &mut Criterion) {
+    for mode in [Mode::Ellipse, Mode::Table] {
+        let n = mode.name();
+        bench_tick::<f32, Libm>(c, &format!("tick_{n}_f32_libm"), mode);
+        bench_tick::<f32, Micromath>(c, &format!("tick_{n}_f32_micromath"), mode);
+        bench_tick::<f64, Libm>(c, &format!("tick_{n}_f64_libm"), mode);
+    }
+}
+
+fn startup(c: &mut Criterion) {
+    for mode in [Mode::Ellipse, Mode::Table] {
+        let cfg = ControllerConfig {
+            mode,
+            ..ControllerConfig::default()
+        };
+        let n = mode.name();
+        c.bench_function(&format!("startup_{n}_f32"), |b| {
+            b.iter(|| black_box(Controller::<f32>::new(black_box(cfg)).expect("valid")))
+        });
+        c.bench_function(&format!("startup_{n}_f64"), |b| {
+            b.iter(|| black_box(Controller::<f64>::new(black_box(cfg)).expect("valid")))
+        });
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(30)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    targets = ticks, startup
+}
+criterion_main!(benches);

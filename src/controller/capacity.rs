@@ -1,0 +1,561 @@
+//! What the contact can hold at each normal force: the start-up grid the tick searches.
+//!
+//! MODEL.md's rule asks, for a load `(f_t, m_n)` and safety factor `s`, for the least `N`
+//! with the scaled load inside the limit surface of the contact at `N`. Write `F = s f_t/μ`
+//! and `M = s m_n/μ`, and `R(N) = a(N) · pitch(l/a(N))`, the contact's *moment arm* [m].
+//! In coordinates `(x, y) = (f̃, m̃/pitch) = (F/N, M/(N R))` the Eq. 10 ellipse is the
+//! unit circle and the exact surfaces of all aspects are nearly so. The rule becomes
+//!
+//! - ellipse mode: `φ(N) = N² − F² − (M/R)² ≥ 0`;
+//! - table mode: `φ(N) = N − (F + M/R) · w(t) ≥ 0`, with `t = y/(x + y)` the load's
+//!   direction and `w(t)` the inverse L1 radius of the normalised surface there.
+//!
+//! Both `powf` (in `a = c·N^γ`) and the pitch (a quadrature) are paid here, once: the grid
+//! holds `R` at `force_nodes` forces spaced evenly in `ln N`, and, for table mode, `w` at
+//! [`DIRECTIONS`] directions on `aspect_count` aspect ratios. A tick then costs a binary
+//! search over the nodes and a bracketed Illinois (modified regula falsi) iteration inside
+//! one interval, with no elementary function but the square root.
+//!
+//! Accuracy and its sign:
+//! - `R(N)` is concave in `N` (`a ∝ N^γ`, `γ ≤ ½`, and `a·pitch(l/a)` is concave in `a`),
+//!   so the linear interpolation between nodes understates it and overstates the force:
+//!   the error is conservative, at most `γ(1−γ)/8 · (Δ ln N)²` relative.
+//! - `w` along a straight chord is linear in `t`, so the direction table is exactly the
+//!   polygon through its samples, which lies inside the convex surface: conservative too.
+//!   Between aspect ratios `w` is interpolated linearly in `ln(l/a)` (not guaranteed
+//!   conservative; `tests/controller.rs` measures it against the exact surface).
+//! - Outside `[N_min, N_max]` the arm is extended by conservative bounds: `R ∝ N` below
+//!   (`R` constant for `γ = 0`) and `R = R(N_max)` above. The answers there are closed forms.
+
+use crate::contact::ContactSize;
+use crate::controller::config::{ControllerConfig, FingerShape, Mode};
+use crate::controller::math::TickMath;
+use crate::error::{check, ConfigError};
+use crate::fls::{FlsConfig, FlsModel, FlsTable};
+use crate::quadrature::QuadratureOrder;
+use crate::real::Real;
+
+/// Most normal forces in the start-up grid.
+pub const MAX_FORCE_NODES: usize = 64;
+/// Most aspect ratios in table mode's grid.
+pub const MAX_ASPECTS: usize = 12;
+/// Directions `t = i/(DIRECTIONS − 1)` at which table mode stores each surface.
+pub const DIRECTIONS: usize = 33;
+/// Most centres of rotation in one start-up sweep (table mode).
+pub const MAX_TABLE_SAMPLES: usize = 128;
+/// Most iterations of the Illinois step in one solve. The tolerance (8 ulp of the answer)
+/// is met in 4 to 9 in the tested cases; the cap bounds the worst case.
+pub const MAX_ILLINOIS_ITERATIONS: u8 = 32;
+/// The largest utilisation a tick reports (a load on a contact with no normal force).
+pub const UTILISATION_MAX: f64 = 1e6;
+
+/// A solve's answer and its cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Solution<T> {
+    /// The least force that holds [N].
+    pub force_n: T,
+    /// Illinois iterations spent (0 when a node or a closed form answered).
+    pub iterations: u8,
+    /// The first grid node that holds the load (`force_nodes` when none does).
+    pub node: usize,
+}
+
+/// The precomputed grid. See the module docs.
+#[derive(Debug, Clone)]
+pub struct Capacity<T> {
+    mode: Mode,
+    nodes: usize,
+    force_n: [T; MAX_FORCE_NODES],
+    arm_m: [T; MAX_FORCE_NODES],
+    inv_arm_per_m: [T; MAX_FORCE_NODES],
+    inv_width_per_n: [T; MAX_FORCE_NODES],
+    aspect_pos: [T; MAX_FORCE_NODES],
+    shapes: usize,
+    inv_radius: [[T; DIRECTIONS]; MAX_ASPECTS],
+    arm_linear_below: bool,
+}
+
+#[inline(always)]
+fn at<T: Copy + Default>(a: &[T], i: usize) -> T {
+    a.get(i).copied().unwrap_or_default()
+}
+
+#[inline(always)]
+fn lerp<T: Real>(a: T, b: T, w: T) -> T {
+    a + (b - a) * w
+}
+
+/// Splits `x ∈ [0, last]` into an index in `[0, last − 1]` and a fraction (NaN reads as 0).
+#[inline(always)]
+fn split<T: Real>(x: T, last: usize) -> (usize, T) {
+    if last == 0 {
+        return (0, T::zero());
+    }
+    let x = x.max(T::zero()).min(T::of_usize(last));
+    // `x ≥ 0`, so truncation is the floor (and compiles to one conversion, no libm call).
+    let i = x.to_usize().unwrap_or(0).min(last - 1);
+    (i, x - T::of_usize(i))
+}
+
+impl<T: Real> Capacity<T> {
+    /// Precomputes the grid for `cfg` (already validated by
+    /// [`ControllerConfig::validate`]), computing in `P` and storing in `T`.
+    pub fn build<P: Real>(cfg: &ControllerConfig) -> Result<Self, ConfigError> {
+        let nodes = usize::from(cfg.force_nodes);
+        if !(2..=MAX_FORCE_NODES).contains(&nodes) {
+            return Err(ConfigError::Capacity {
+                param: "force_nodes",
+                requested: nodes,
+                limit: if nodes < 2 { 2 } else { MAX_FORCE_NODES },
+            });
+        }
+        let contact = ContactSize::<P>::new(cfg.c_m_per_n_gamma, cfg.gamma)?;
+        let model = FlsModel::<P>::new(FlsConfig {
+            shape: cfg.fls_shape(1.0),
+            k: cfg.k,
+            skew: cfg.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
+            order: QuadratureOrder::new(usize::from(cfg.quadrature_order))?,
+        })?;
+        let varying = cfg.shape == FingerShape::Rect && cfg.gamma > 0.0;
+        let aspect_of = |a: P| (P::of(cfg.half_length_m) / a).to_f64();
+        let fixed_pitch = if varying {
+            P::zero()
+        } else {
+            let a = contact.half_width_m(P::of(cfg.n_min_n));
+            model.with_aspect(aspect_of(a))?.pitch()
+        };
+
+        let mut cap = Self {
+            mode: cfg.mode,
+            nodes,
+            force_n: [T::zero(); MAX_FORCE_NODES],
+            arm_m: [T::zero(); MAX_FORCE_NODES],
+            inv_arm_per_m: [T::zero(); MAX_FORCE_NODES],
+            inv_width_per_n: [T::zero(); MAX_FORCE_NODES],
+            aspect_pos: [T::zero(); MAX_FORCE_NODES],
+            shapes: 1,
+            inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
+            arm_linear_below: cfg.gamma > 0.0,
+        };
+        let ln_n_min = P::of(cfg.n_min_n).ln();
+        let ln_step = (P::of(cfg.n_max_n).ln() - ln_n_min) / P::of_usize(nodes - 1);
+        for j in 0..nodes {
+            let n = if j + 1 == nodes {
+                P::of(cfg.n_max_n)
+            } else if j == 0 {
+                P::of(cfg.n_min_n)
+            } else {
+                (ln_n_min + ln_step * P::of_usize(j)).exp()
+            };
+            let a = contact.half_width_m(n);
+            let pitch = if varying {
+                model.with_aspect(aspect_of(a))?.pitch()
+            } else {
+                fixed_pitch
+            };
+            let arm = a * pitch;
+            if let (Some(f), Some(r), Some(ir)) = (
+                cap.force_n.get_mut(j),
+                cap.arm_m.get_mut(j),
+                cap.inv_arm_per_m.get_mut(j),
+            ) {
+                *f = T::of(n.to_f64());
+                *r = T::of(arm.to_f64());
+                *ir = T::of(arm.recip().to_f64());
+            }
+        }
+        for j in 0..nodes - 1 {
+            let width = at(&cap.force_n, j + 1) - at(&cap.force_n, j);
+            if let Some(w) = cap.inv_width_per_n.get_mut(j) {
+                *w = width.recip();
+            }
+        }
+        check_range(cfg, &cap)?;
+        if cfg.mode == Mode::Table {
+            cap.build_shapes(cfg, &model, &contact, varying)?;
+        }
+        Ok(cap)
+    }
+
+    fn build_shapes<P: Real>(
+        &mut self,
+        cfg: &ControllerConfig,
+        model: &FlsModel<P>,
+        contact: &ContactSize<P>,
+        varying: bool,
+    ) -> Result<(), ConfigError> {
+        let samples = usize::from(cfg.table_samples);
+        let shapes = if varying {
+            usize::from(cfg.aspect_count)
+        } else {
+            1
+        };
+        if !(2..=MAX_ASPECTS).contains(&shapes) && varying {
+            return Err(ConfigError::Capacity {
+                param: "aspect_count",
+                requested: shapes,
+                limit: if shapes < 2 { 2 } else { MAX_ASPECTS },
+            });
+        }
+        if !(2..=MAX_TABLE_SAMPLES).contains(&samples) {
+            return Err(ConfigError::Capacity {
+                param: "table_samples",
+                requested: samples,
+                limit: if samples < 2 { 2 } else { MAX_TABLE_SAMPLES },
+            });
+        }
+        self.shapes = shapes;
+        let l = P::of(cfg.half_length_m);
+        // Aspect ratios fall as the force rises: the first node has the largest.
+        let ln_hi = (l / contact.half_width_m(P::of(cfg.n_min_n))).ln();
+        let ln_lo = (l / contact.half_width_m(P::of(cfg.n_max_n))).ln();
+        let ln_step = if shapes > 1 {
+            (ln_hi - ln_lo) / P::of_usize(shapes - 1)
+        } else {
+            P::zero()
+        };
+        for j in 0..self.nodes {
+            let pos = if shapes > 1 && ln_step > P::zero() {
+                let n = P::of(at(&self.force_n, j).to_f64());
+                ((l / contact.half_width_m(n)).ln() - ln_lo) / ln_step
+            } else {
+                P::zero()
+            };
+            if let Some(p) = self.aspect_pos.get_mut(j) {
+                *p = T::of(pos.to_f64());
+            }
+        }
+        for e in 0..shapes {
+            let entry = if varying {
+                model.with_aspect((ln_lo + ln_step * P::of_usize(e)).exp().to_f64())?
+            } else {
+                model.with_aspect((l / contact.half_width_m(P::of(cfg.n_min_n))).to_f64())?
+            };
+            let table = FlsTable::<P, { MAX_TABLE_SAMPLES + 1 }>::sweep(&entry, samples)?;
+            if !table.is_star_shaped() {
+                let locus = cfg.skew.map_or(0.0, |s| s.locus_over_a);
+                return Err(ConfigError::OutOfRange {
+                    param: "locus",
+                    value: locus,
+                    expected: "a star-shaped surface for table mode (locus 0 on a skewed disc)",
+                });
+            }
+            let pitch = table.pitch();
+            if let Some(row) = self.inv_radius.get_mut(e) {
+                for (i, w) in row.iter_mut().enumerate() {
+                    let t = P::of_usize(i) / P::of_usize(DIRECTIONS - 1);
+                    *w = T::of(table.utilisation(P::one() - t, t * pitch).to_f64());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The mode the grid serves.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The node forces [N], from `N_min` to `N_max`.
+    pub fn forces_n(&self) -> &[T] {
+        self.force_n.get(..self.nodes).unwrap_or(&[])
+    }
+
+    /// The moment arms `a·pitch` [m] at the node forces.
+    pub fn arms_m(&self) -> &[T] {
+        self.arm_m.get(..self.nodes).unwrap_or(&[])
+    }
+
+    /// The inverse L1 radius of the normalised surface in direction `t ∈ [0, 1]` at the
+    /// fractional aspect index `pos`.
+    #[inline]
+    fn inv_radius(&self, t: T, pos: T) -> T {
+        let (i, wi) = split(t * T::of_usize(DIRECTIONS - 1), DIRECTIONS - 1);
+        let row = |e: usize| {
+            self.inv_radius
+                .get(e)
+                .map_or(T::one(), |r| lerp(at(r, i), at(r, i + 1), wi))
+        };
+        let (e, we) = split(pos, self.shapes - 1);
+        if self.shapes == 1 {
+            row(0)
+        } else {
+            lerp(row(e), row(e + 1), we)
+        }
+    }
+
+    /// The table-mode demand `(F + M/R)·w(t)` for `y = M/R`.
+    #[inline]
+    fn table_demand(&self, f: T, y: T, pos: T) -> T {
+        let s = f + y;
+        if s == T::zero() {
+            return T::zero();
+        }
+        s * self.inv_radius(y / s, pos)
+    }
+
+    /// `φ(N)` multiplied by `R²` (ellipse) or `R` (table), which keeps its sign and
+    /// spares the divisions: ellipse `R²(N² − F²) − M²`, table `N R − (F R + M)·w(t)` with
+    /// `t = M/(F R + M)`.
+    #[inline]
+    fn phi(&self, f: T, m: T, n: T, arm: T, pos: T) -> T {
+        match self.mode {
+            Mode::Ellipse => arm * arm * (n * n - f * f) - m * m,
+            Mode::Table => {
+                let s = f * arm + m;
+                if s == T::zero() {
+                    return n * arm;
+                }
+                n * arm - s * self.inv_radius(m / s, pos)
+            }
+        }
+    }
+
+    #[inline]
+    fn phi_node(&self, f: T, m: T, j: usize) -> T {
+        self.phi(
+            f,
+            m,
+            at(&self.force_n, j),
+            at(&self.arm_m, j),
+            at(&self.aspect_pos, j),
+        )
+    }
+
+    /// `R` and the aspect position at the force `n` inside interval `j` (nodes `j`,
+    /// `j + 1`).
+    #[inline]
+    fn interpolate(&self, j: usize, n: T) -> (T, T) {
+        let w = (n - at(&self.force_n, j)) * at(&self.inv_width_per_n, j);
+        let arm = lerp(at(&self.arm_m, j), at(&self.arm_m, j + 1), w);
+        let pos = lerp(at(&self.aspect_pos, j), at(&self.aspect_pos, j + 1), w);
+        (arm, pos)
+    }
+
+    /// The least normal force [N] at which the (already scaled) demand `f = F`, `m = M`
+    /// holds: `N_req`. Inputs must be finite and non-negative (the tick guarantees it).
+    /// Cost: `log2(force_nodes)` node tests, then at most [`MAX_ILLINOIS_ITERATIONS`].
+    pub fn required_force<M: TickMath<T>>(&self, f: T, m: T) -> Solution<T> {
+        self.solve_from::<M>(f, m, 0)
+    }
+
+    /// `N_req` for `s` times a load whose `N_slip` solution is `slip`, `s ≥ 1`. No node
+    /// below `N_slip` can hold the larger load, so the node search starts at `slip`'s node
+    /// and walks up (MODEL.md: `N_req(s) ≤ s·N_slip`, a few nodes at most). Same answer
+    /// as [`Capacity::required_force`] on the scaled load, at about half the cost.
+    pub fn required_force_scaled<M: TickMath<T>>(
+        &self,
+        f: T,
+        m: T,
+        slip: &Solution<T>,
+        s: T,
+    ) -> Solution<T> {
+        let from = if s >= T::one() { slip.node } else { 0 };
+        self.solve_from::<M>(f * s, m * s, from)
+    }
+
+    fn solve_from<M: TickMath<T>>(&self, f: T, m: T, from: usize) -> Solution<T> {
+        let done = |force_n, node| Solution {
+            force_n,
+            iterations: 0,
+            node,
+        };
+        if f == T::zero() && m == T::zero() {
+            return done(T::zero(), 0);
+        }
+        // The first node at or after `from` that holds (φ is monotone in N): a short walk,
+        // then a binary search.
+        let (mut lo, mut hi) = (from.min(self.nodes), self.nodes);
+        for _ in 0..3 {
+            if lo < hi && self.phi_node(f, m, lo) < T::zero() {
+                lo += 1;
+            } else {
+                hi = lo;
+            }
+        }
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if self.phi_node(f, m, mid) >= T::zero() {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        if lo == 0 {
+            return done(self.below_grid::<M>(f, m), 0);
+        }
+        if lo >= self.nodes {
+            return done(self.above_grid::<M>(f, m), self.nodes);
+        }
+        let mut sol = self.illinois_in(f, m, lo - 1);
+        sol.node = lo;
+        sol
+    }
+
+    fn illinois_in(&self, f: T, m: T, j: usize) -> Solution<T> {
+        let (a, b) = (at(&self.force_n, j), at(&self.force_n, j + 1));
+        let (fa, fb) = (self.phi_node(f, m, j), self.phi_node(f, m, j + 1));
+        Self::illinois((a, fa), (b, fb), |c| {
+            let (arm, pos) = self.interpolate(j, c);
+            self.phi(f, m, c, arm, pos)
+        })
+    }
+
+    /// Illinois (modified regula falsi) on `[a, b]` with `φ(a) < 0 ≤ φ(b)`: the bracket is
+    /// kept at every step (a step that would leave it bisects instead), and the upper end,
+    /// where the load holds, is returned once the bracket is within 8 ulp or after
+    /// [`MAX_ILLINOIS_ITERATIONS`].
+    fn illinois(
+        (mut a, mut fa): (T, T),
+        (mut b, mut fb): (T, T),
+        phi: impl Fn(T) -> T,
+    ) -> Solution<T> {
+        let tol = T::epsilon() * T::of(8.0);
+        let mut side = 0i8;
+        let mut iterations = 0u8;
+        while iterations < MAX_ILLINOIS_ITERATIONS {
+            if fb == T::zero() || b - a <= tol * b {
+                break;
+            }
+            iterations += 1;
+            let mut c = b - fb * (b - a) / (fb - fa);
+            if !(c > a && c < b) {
+                c = a + (b - a) * T::of(0.5);
+            }
+            let fc = phi(c);
+            if fc >= T::zero() {
+                b = c;
+                fb = fc;
+                if side == 1 {
+                    fa = fa * T::of(0.5);
+                }
+                side = 1;
+            } else {
+                a = c;
+                fa = fc;
+                if side == -1 {
+                    fb = fb * T::of(0.5);
+                }
+                side = -1;
+            }
+        }
+        Solution {
+            force_n: b,
+            iterations,
+            node: 0,
+        }
+    }
+
+    /// Below `N_min`: `R = R₀ (N/N₀)^β`, `β = 1` for `γ > 0` (a lower bound of the concave
+    /// arm), `β = 0` for `γ = 0` (exact). Closed forms; the answer is at most `N₀`.
+    fn below_grid<M: TickMath<T>>(&self, f: T, m: T) -> T {
+        let n0 = at(&self.force_n, 0);
+        let inv0 = at(&self.inv_arm_per_m, 0);
+        let pos0 = at(&self.aspect_pos, 0);
+        let two = T::of(2.0);
+        let n = match (self.mode, self.arm_linear_below) {
+            (Mode::Ellipse, false) => {
+                let y = m * inv0;
+                M::sqrt(f * f + y * y)
+            }
+            (Mode::Ellipse, true) => {
+                let q = m * n0 * inv0;
+                let h = f * f / two;
+                M::sqrt(h + M::sqrt(h * h + q * q))
+            }
+            (Mode::Table, false) => self.table_demand(f, m * inv0, pos0),
+            (Mode::Table, true) => {
+                let y0 = m * inv0;
+                let w0 = self.inv_radius(y0 / (f + y0), pos0);
+                let b = f * w0;
+                let c = m * n0 * inv0 * w0;
+                (b + M::sqrt(b * b + two * two * c)) / two
+            }
+        };
+        n.min(n0)
+    }
+
+    /// Above `N_max`: `R = R(N_max)` (a lower bound of the increasing arm). Closed form;
+    /// the answer is at least `N_max`.
+    fn above_grid<M: TickMath<T>>(&self, f: T, m: T) -> T {
+        let last = self.nodes - 1;
+        let y = m * at(&self.inv_arm_per_m, last);
+        let n = match self.mode {
+            Mode::Ellipse => M::sqrt(f * f + y * y),
+            Mode::Table => self.table_demand(f, y, at(&self.aspect_pos, last)),
+        };
+        n.max(at(&self.force_n, last))
+    }
+
+    /// `R` and the aspect position at any force `n > 0`.
+    fn arm_at(&self, n: T) -> (T, T) {
+        let last = self.nodes - 1;
+        let n0 = at(&self.force_n, 0);
+        if n <= n0 {
+            let arm0 = at(&self.arm_m, 0);
+            let arm = if self.arm_linear_below {
+                arm0 * n / n0
+            } else {
+                arm0
+            };
+            return (arm, at(&self.aspect_pos, 0));
+        }
+        if n >= at(&self.force_n, last) {
+            return (at(&self.arm_m, last), at(&self.aspect_pos, last));
+        }
+        let j = self
+            .forces_n()
+            .partition_point(|&x| x <= n)
+            .saturating_sub(1)
+            .min(last - 1);
+        self.interpolate(j, n)
+    }
+
+    /// How far the demand `(f, m)` (unscaled: `|f_t|/μ`, `|m_n|/μ`) is along its ray to the
+    /// limit surface of the contact at the normal force `n`: `< 1` holds, `≥ 1` slips.
+    /// Capped at [`UTILISATION_MAX`]; a load on `n ≤ 0` gets the cap, no load gets 0.
+    pub fn utilisation<M: TickMath<T>>(&self, f: T, m: T, n: T) -> T {
+        let cap = T::of(UTILISATION_MAX);
+        if f == T::zero() && m == T::zero() {
+            return T::zero();
+        }
+        if !(n > T::zero()) {
+            return cap;
+        }
+        let (arm, pos) = self.arm_at(n);
+        let fr = f * arm;
+        // The demand times R: ellipse |(F R, M)|, table (F R + M)·w(t).
+        let demand = match self.mode {
+            Mode::Ellipse => M::sqrt(fr * fr + m * m),
+            Mode::Table => {
+                let s = fr + m;
+                s * self.inv_radius(m / s, pos)
+            }
+        };
+        let u = demand / (arm * n);
+        if u.is_nan() {
+            cap
+        } else {
+            u.min(cap)
+        }
+    }
+}
+
+/// Refuses sensor ranges whose worst demand would overflow `T` in the tick.
+fn check_range<T: Real>(cfg: &ControllerConfig, cap: &Capacity<T>) -> Result<(), ConfigError> {
+    let scale = cfg.safety / cfg.mu;
+    let f = T::of(scale * cfg.force_range_n * core::f64::consts::SQRT_2);
+    let m = T::of(scale * cfg.moment_range_nm);
+    let inv0 = at(&cap.inv_arm_per_m, 0);
+    let n0 = at(&cap.force_n, 0);
+    let y = m * inv0 * n0.max(T::one());
+    let worst = f * f + y * y;
+    let n_max = T::of(cfg.n_max_n);
+    let ok = worst.is_finite() && (worst * T::of(16.0)).is_finite() && (n_max * n_max).is_finite();
+    check(
+        "force_range_n",
+        cfg.force_range_n,
+        ok,
+        "a sensor range whose worst load does not overflow the tick's precision",
+    )
+}

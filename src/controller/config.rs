@@ -1,0 +1,246 @@
+//! The controller's configuration, validated once at start-up.
+
+use crate::error::{check, ConfigError};
+use crate::fls::Shape;
+use crate::quadrature::QuadratureOrder;
+use serde::{Deserialize, Serialize};
+
+/// Which fingertip the contact belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FingerShape {
+    /// Hemicylinder: the rectangular patch `[-l, l] × [-a, a]` (the paper's case).
+    Rect,
+    /// Hemisphere: the disc of radius `a`.
+    Disc,
+}
+
+impl FingerShape {
+    /// The name the command line and scene files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            FingerShape::Rect => "rect",
+            FingerShape::Disc => "disc",
+        }
+    }
+}
+
+/// How the tick tests the load against the limit surface (MODEL.md, "The slip-prevention
+/// rule").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// The Eq. 10 ellipse with the exact pitch at `l/a(N)`. Cheapest; the exact surface lies
+    /// inside the ellipse by up to about 7 % near the diagonal, so for combined loads this
+    /// mode asks for up to that much less force than the exact surface would.
+    Ellipse,
+    /// The exact limit surface, precomputed as a table on a grid of aspect ratios.
+    Table,
+}
+
+impl Mode {
+    /// The name the command line uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Ellipse => "ellipse",
+            Mode::Table => "table",
+        }
+    }
+}
+
+/// The skew of the pressure peak (Eq. 16, 17), in units of the half-width `a`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SkewParams {
+    /// `Δ/a ∈ [0, 1)`: how far the peak can move (paper: 0.9).
+    pub delta_over_a: f64,
+    /// `α > 0`: how fast it moves with the centre of rotation (paper: 1.1).
+    pub alpha: f64,
+    /// `h/a`: the bulge of the peak's locus (`Δ/2` is the paper's circular path; only the
+    /// disc feels it).
+    pub locus_over_a: f64,
+}
+
+impl SkewParams {
+    /// The paper's case: `Δ/a = 0.9`, `α = 1.1`, circular locus.
+    pub const PAPER: Self = Self {
+        delta_over_a: 0.9,
+        alpha: 1.1,
+        locus_over_a: 0.45,
+    };
+}
+
+/// Everything the controller depends on. Plain data: build it, then hand it to
+/// [`Controller::new`](super::Controller::new), which validates it and precomputes the
+/// limit surfaces. Parameter names in errors are the field names.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ControllerConfig {
+    /// Coulomb friction coefficient `μ > 0`.
+    pub mu: f64,
+    /// Fingertip shape.
+    pub shape: FingerShape,
+    /// Pressure exponent `k ≥ 1` (`f64::INFINITY` for uniform pressure).
+    pub k: f64,
+    /// Skew of the pressure peak, or `None` for the symmetric profile. Only table mode sees
+    /// it: the skew cannot change the pitch, hence not the ellipse either.
+    pub skew: Option<SkewParams>,
+    /// `c` in `a = c·N^γ` [m/N^γ].
+    pub c_m_per_n_gamma: f64,
+    /// `γ ∈ [0, 1/2]` in `a = c·N^γ`.
+    pub gamma: f64,
+    /// Half-length `l` of the rectangular patch along the cylinder axis [m] (ignored for
+    /// the disc).
+    pub half_length_m: f64,
+    /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
+    pub safety: f64,
+    /// Least commanded normal force `N_min > 0` [N].
+    pub n_min_n: f64,
+    /// Greatest commanded normal force `N_max > N_min` [N].
+    pub n_max_n: f64,
+    /// Fastest rise of the command [N/s].
+    pub rise_rate_n_per_s: f64,
+    /// Fastest fall of the command [N/s].
+    pub fall_rate_n_per_s: f64,
+    /// Time between ticks [s]: the rate limits are applied per tick with this step.
+    pub tick_period_s: f64,
+    /// How long the controller holds its last safe command without a good measurement
+    /// before it moves to `fault_force_n` [s].
+    pub stale_timeout_s: f64,
+    /// The force to go to once the input has been bad or stale for `stale_timeout_s` [N],
+    /// within `[N_min, N_max]`.
+    pub fault_force_n: f64,
+    /// Sensor range for each tangential force component and the measured normal force
+    /// [N]: a reading beyond it is a sensor fault.
+    pub force_range_n: f64,
+    /// Sensor range for the torsional moment [N·m]: a reading beyond it is a sensor fault.
+    pub moment_range_nm: f64,
+    /// Ellipse or table.
+    pub mode: Mode,
+    /// Normal forces in the start-up grid, spaced evenly in `ln N` over `[N_min, N_max]`
+    /// (2 to [`MAX_FORCE_NODES`](super::MAX_FORCE_NODES)). The tick interpolates the moment
+    /// arm `a(N)·pitch(l/a(N))` linearly between them.
+    pub force_nodes: u16,
+    /// Quadrature order for the start-up precomputation (nodes per side, 4–128).
+    pub quadrature_order: u16,
+    /// Centres of rotation per limit-surface sweep in table mode (at most
+    /// [`MAX_TABLE_SAMPLES`](super::MAX_TABLE_SAMPLES)).
+    pub table_samples: u16,
+    /// Aspect ratios `l/a` in table mode's grid for the rectangle with `γ > 0` (at most
+    /// [`MAX_ASPECTS`](super::MAX_ASPECTS); the disc and `γ = 0` need one).
+    pub aspect_count: u16,
+}
+
+impl Default for ControllerConfig {
+    /// A hemicylindrical silicone fingertip in the paper's range: `μ = 0.8`, `k = 2`, no
+    /// skew, `a = 2.5 mm · N^{1/2}`, `l = 10 mm`, `s = 1.3`, 0.2–20 N, 1 kHz, ellipse mode.
+    fn default() -> Self {
+        Self {
+            mu: 0.8,
+            shape: FingerShape::Rect,
+            k: 2.0,
+            skew: None,
+            c_m_per_n_gamma: 2.5e-3,
+            gamma: 0.5,
+            half_length_m: 10e-3,
+            safety: 1.3,
+            n_min_n: 0.2,
+            n_max_n: 20.0,
+            rise_rate_n_per_s: 400.0,
+            fall_rate_n_per_s: 20.0,
+            tick_period_s: 1e-3,
+            stale_timeout_s: 20e-3,
+            fault_force_n: 10.0,
+            force_range_n: 100.0,
+            moment_range_nm: 2.0,
+            mode: Mode::Ellipse,
+            force_nodes: 48,
+            quadrature_order: 28,
+            table_samples: 48,
+            aspect_count: 8,
+        }
+    }
+}
+
+fn positive(param: &'static str, v: f64) -> Result<(), ConfigError> {
+    check(param, v, v > 0.0 && v.is_finite(), "a finite number > 0")
+}
+
+impl ControllerConfig {
+    /// Checks every field (except the table sizes, which the controller checks against
+    /// its capacities) and returns the first bad one.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("mu", self.mu)?;
+        check("k", self.k, self.k >= 1.0, "k >= 1 (inf for uniform)")?;
+        if let Some(s) = self.skew {
+            check(
+                "skew",
+                s.delta_over_a,
+                (0.0..1.0).contains(&s.delta_over_a),
+                "0 <= skew < 1",
+            )?;
+            positive("alpha", s.alpha)?;
+            check(
+                "locus",
+                s.locus_over_a,
+                s.locus_over_a >= 0.0 && s.locus_over_a.is_finite(),
+                "locus >= 0",
+            )?;
+        }
+        positive("c_m_per_n_gamma", self.c_m_per_n_gamma)?;
+        check(
+            "gamma",
+            self.gamma,
+            (0.0..=0.5).contains(&self.gamma),
+            "0 <= gamma <= 1/2",
+        )?;
+        if self.shape == FingerShape::Rect {
+            positive("half_length_m", self.half_length_m)?;
+        }
+        check(
+            "safety",
+            self.safety,
+            self.safety >= 1.0 && self.safety.is_finite(),
+            "safety >= 1",
+        )?;
+        positive("n_min_n", self.n_min_n)?;
+        check(
+            "n_max_n",
+            self.n_max_n,
+            self.n_max_n > self.n_min_n && self.n_max_n.is_finite(),
+            "n_max_n > n_min_n",
+        )?;
+        positive("rise_rate_n_per_s", self.rise_rate_n_per_s)?;
+        positive("fall_rate_n_per_s", self.fall_rate_n_per_s)?;
+        positive("tick_period_s", self.tick_period_s)?;
+        check(
+            "stale_timeout_s",
+            self.stale_timeout_s,
+            self.stale_timeout_s >= self.tick_period_s && self.stale_timeout_s.is_finite(),
+            "stale_timeout_s >= tick_period_s",
+        )?;
+        check(
+            "fault_force_n",
+            self.fault_force_n,
+            (self.n_min_n..=self.n_max_n).contains(&self.fault_force_n),
+            "n_min_n <= fault_force_n <= n_max_n",
+        )?;
+        check(
+            "force_range_n",
+            self.force_range_n,
+            self.force_range_n > 0.0 && self.force_range_n <= 1e9,
+            "0 < force_range_n <= 1e9",
+        )?;
+        check(
+            "moment_range_nm",
+            self.moment_range_nm,
+            self.moment_range_nm > 0.0 && self.moment_range_nm <= 1e9,
+            "0 < moment_range_nm <= 1e9",
+        )?;
+        QuadratureOrder::new(usize::from(self.quadrature_order)).map(|_| ())
+    }
+
+    /// The core's shape at aspect `l/a` (ignored for the disc).
+    pub(crate) fn fls_shape(&self, aspect: f64) -> Shape {
+        match self.shape {
+            FingerShape::Rect => Shape::Rect { aspect },
+            FingerShape::Disc => Shape::Disc,
+        }
+    }
+}

@@ -1,0 +1,258 @@
+//! The controller: validated once, then one total function per tick.
+
+use crate::controller::capacity::{Capacity, Solution};
+use crate::controller::config::ControllerConfig;
+use crate::controller::math::{Libm, TickMath};
+use crate::controller::status::Status;
+use crate::error::ConfigError;
+use crate::real::Real;
+use core::marker::PhantomData;
+
+/// One sensor reading. Any value is accepted; the tick decides what is usable.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Measurement<T> {
+    /// Tangential force in the contact plane, two components [N].
+    pub tangential_force_n: [T; 2],
+    /// Torsional moment about the contact normal [N·m].
+    pub torsional_moment_nm: T,
+    /// Measured normal force [N] (the grip the contact has now).
+    pub normal_force_n: T,
+    /// When the reading was taken [µs], on the sensor's clock. Must increase.
+    pub timestamp_us: u64,
+}
+
+/// What one tick decided. Every number is finite, always.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TickOutput<T> {
+    /// The commanded normal force [N], in `[N_min, N_max]`.
+    pub command_n: T,
+    /// `N_req(s)`: the least force that holds the load with the safety margin [N] (may lie
+    /// outside `[N_min, N_max]`: see [`Capacity`] for how it is extended there).
+    pub required_n: T,
+    /// `N_slip = N_req(1)`: the force at which this load would just start to slip [N].
+    pub n_slip_n: T,
+    /// How far the load is along its way to the limit surface of the contact at the
+    /// measured normal force: `< 1` holds, `≥ 1` slips. In `[0, UTILISATION_MAX]`.
+    pub utilisation: T,
+    /// What happened.
+    pub status: Status,
+    /// Whether the input has been bad or stale for longer than the stale timeout, so the
+    /// command is heading for the fault force.
+    pub fault_active: bool,
+    /// Illinois iterations spent in this tick (both solves), for cost accounting.
+    pub iterations: u8,
+}
+
+/// The slip-prevention controller.
+///
+/// Built once by [`Controller::new`], which validates the [`ControllerConfig`] into a
+/// [`ConfigError`] naming the bad field and precomputes the [`Capacity`] grid (this is
+/// where all `powf` and quadrature happen). After that [`Controller::tick`] cannot fail,
+/// does not allocate and runs in bounded time: two solves of at most
+/// `log2(force_nodes) + MAX_ILLINOIS_ITERATIONS` steps each, and one utilisation.
+///
+/// Each tick, for a good measurement (finite, within the sensor ranges, newer than the
+/// last good one):
+/// 1. `N_req(s)` and `N_slip = N_req(1)` from the load `(|f_t|, |m_n|)`;
+/// 2. the target `clamp(N_req(s), N_min, N_max)`, status `Saturated` when
+///    `N_req(s) > N_max`;
+/// 3. the command moves toward the target by at most `rise_rate·dt` up or
+///    `fall_rate·dt` down (`dt` the tick period): it rises fast and relaxes slowly.
+///
+/// For a bad measurement (NaN, ±∞, beyond the sensor range: `SensorFault`) or a stale one
+/// (timestamp not newer: `StaleInput`) it holds the last command and reports the last good
+/// `N_req`, `N_slip` and utilisation. Once no good measurement has arrived for
+/// `stale_timeout_s` it moves the command to `fault_force_n`, rate-limited, and sets
+/// `fault_active` until a good measurement comes. The command starts at `N_min`.
+///
+/// `T` is the precision of the tick (f32 on the Cortex-M4F), `M` its math backend.
+#[derive(Debug, Clone)]
+pub struct Controller<T, M = Libm> {
+    config: ControllerConfig,
+    capacity: Capacity<T>,
+    inv_mu: T,
+    safety: T,
+    n_min: T,
+    n_max: T,
+    rise_step: T,
+    fall_step: T,
+    fault_force: T,
+    force_range: T,
+    moment_range: T,
+    stale_ticks: u32,
+    // State.
+    command: T,
+    last: Option<TickOutput<T>>,
+    last_good_us: Option<u64>,
+    bad_ticks: u32,
+    _math: PhantomData<M>,
+}
+
+impl<T: Real, M: TickMath<T>> Controller<T, M> {
+    /// Validates `config` and precomputes in the tick's own precision `T`.
+    pub fn new(config: ControllerConfig) -> Result<Self, ConfigError> {
+        Self::new_precomputed_in::<T>(config)
+    }
+
+    /// Validates `config` and precomputes in precision `P` (for example f64 on the host
+    /// for an f32 tick), storing the grid in `T`.
+    pub fn new_precomputed_in<P: Real>(config: ControllerConfig) -> Result<Self, ConfigError> {
+        config.validate()?;
+        let capacity = Capacity::build::<P>(&config)?;
+        let ticks = libm::ceil(config.stale_timeout_s / config.tick_period_s - 1e-9);
+        Ok(Self {
+            inv_mu: T::of(1.0 / config.mu),
+            safety: T::of(config.safety),
+            n_min: T::of(config.n_min_n),
+            n_max: T::of(config.n_max_n),
+            rise_step: T::of(config.rise_rate_n_per_s * config.tick_period_s),
+            fall_step: T::of(config.fall_rate_n_per_s * config.tick_period_s),
+            fault_force: T::of(config.fault_force_n),
+            force_range: T::of(config.force_range_n),
+            moment_range: T::of(config.moment_range_nm),
+            stale_ticks: if ticks >= u32::MAX as f64 {
+                u32::MAX
+            } else {
+                ticks.max(1.0) as u32
+            },
+            command: T::of(config.n_min_n),
+            last: None,
+            last_good_us: None,
+            bad_ticks: 0,
+            capacity,
+            config,
+            _math: PhantomData,
+        })
+    }
+
+    /// The configuration it was built from.
+    pub fn config(&self) -> &ControllerConfig {
+        &self.config
+    }
+
+    /// The precomputed grid.
+    pub fn capacity(&self) -> &Capacity<T> {
+        &self.capacity
+    }
+
+    /// The present command [N].
+    pub fn command_n(&self) -> T {
+        self.command
+    }
+
+    /// Back to the start-up state (command `N_min`, no history), keeping the grid.
+    pub fn reset(&mut self) {
+        self.command = self.n_min;
+        self.last = None;
+        self.last_good_us = None;
+        self.bad_ticks = 0;
+    }
+
+    /// `N_req` for a load, without touching the controller's state: the pure rule of
+    /// MODEL.md. `safety` scales the load (1 gives `N_slip`). Non-finite inputs give
+    /// `None`.
+    pub fn required_force(
+        &self,
+        tangential_force_n: T,
+        torsional_moment_nm: T,
+        safety: T,
+    ) -> Option<Solution<T>> {
+        let (f, m) = (tangential_force_n.abs(), torsional_moment_nm.abs());
+        if !(f.is_finite() && m.is_finite() && safety.is_finite()) {
+            return None;
+        }
+        let s = safety.abs() * self.inv_mu;
+        Some(self.capacity.required_force::<M>(f * s, m * s))
+    }
+
+    /// Utilisation of a load at normal force `normal_force_n` (no safety factor), without
+    /// touching the state. Non-finite inputs give `None`.
+    pub fn utilisation(
+        &self,
+        tangential_force_n: T,
+        torsional_moment_nm: T,
+        normal_force_n: T,
+    ) -> Option<T> {
+        let (f, m) = (tangential_force_n.abs(), torsional_moment_nm.abs());
+        if !(f.is_finite() && m.is_finite() && normal_force_n.is_finite()) {
+            return None;
+        }
+        Some(
+            self.capacity
+                .utilisation::<M>(f * self.inv_mu, m * self.inv_mu, normal_force_n),
+        )
+    }
+
+    fn in_range(&self, m: &Measurement<T>) -> bool {
+        let [fx, fy] = m.tangential_force_n;
+        let r = self.force_range;
+        // `!(|x| <= r)` is also true for NaN.
+        fx.abs() <= r
+            && fy.abs() <= r
+            && m.normal_force_n.abs() <= r
+            && m.torsional_moment_nm.abs() <= self.moment_range
+    }
+
+    fn rate_limited(&self, target: T) -> T {
+        let up = self.command + self.rise_step;
+        let down = self.command - self.fall_step;
+        target.min(up).max(down).max(self.n_min).min(self.n_max)
+    }
+
+    /// One control tick. Total: any measurement, however hostile, gives a finite output
+    /// and leaves the controller in a documented state (see the type's docs).
+    pub fn tick(&mut self, m: &Measurement<T>) -> TickOutput<T> {
+        let status = if !self.in_range(m) {
+            Status::SensorFault
+        } else if self.last_good_us.is_some_and(|t| m.timestamp_us <= t) {
+            Status::StaleInput
+        } else {
+            return self.good_tick(m);
+        };
+        self.bad_ticks = self.bad_ticks.saturating_add(1);
+        let fault_active = self.bad_ticks >= self.stale_ticks;
+        if fault_active {
+            self.command = self.rate_limited(self.fault_force);
+        }
+        let last = self.last;
+        TickOutput {
+            command_n: self.command,
+            required_n: last.map_or(self.n_min, |o| o.required_n),
+            n_slip_n: last.map_or(T::zero(), |o| o.n_slip_n),
+            utilisation: last.map_or(T::zero(), |o| o.utilisation),
+            status,
+            fault_active,
+            iterations: 0,
+        }
+    }
+
+    fn good_tick(&mut self, m: &Measurement<T>) -> TickOutput<T> {
+        self.last_good_us = Some(m.timestamp_us);
+        self.bad_ticks = 0;
+        let [fx, fy] = m.tangential_force_n;
+        let f = M::sqrt(fx * fx + fy * fy) * self.inv_mu;
+        let mz = m.torsional_moment_nm.abs() * self.inv_mu;
+        let slip = self.capacity.required_force::<M>(f, mz);
+        let req = self
+            .capacity
+            .required_force_scaled::<M>(f, mz, &slip, self.safety);
+        let status = if req.force_n > self.n_max {
+            Status::Saturated
+        } else {
+            Status::Ok
+        };
+        let target = req.force_n.max(self.n_min).min(self.n_max);
+        self.command = self.rate_limited(target);
+        let out = TickOutput {
+            command_n: self.command,
+            required_n: req.force_n,
+            n_slip_n: slip.force_n,
+            utilisation: self.capacity.utilisation::<M>(f, mz, m.normal_force_n),
+            status,
+            fault_active: false,
+            iterations: slip.iterations.saturating_add(req.iterations),
+        };
+        self.last = Some(out);
+        out
+    }
+}

@@ -1,0 +1,287 @@
+//! The messages: what the host and the device say to each other.
+//!
+//! Every type here is plain data with a fixed upper bound on its encoded size (no
+//! unbounded strings or sequences), so a whole frame always fits
+//! [`MAX_FRAME_LEN`](super::MAX_FRAME_LEN) bytes.
+
+use core::fmt::{self, Write};
+
+use heapless::String;
+use serde::{Deserialize, Serialize};
+
+use super::frame::MAX_FRAME_LEN;
+use crate::controller::{ControllerConfig, Status};
+use crate::ConfigError;
+
+/// The protocol's version. Bump it when the meaning of a message changes without its
+/// encoding changing (the [`SCHEMA_KEY`] follows the encoding by itself).
+pub const PROTOCOL_VERSION: u16 = 1;
+
+/// Every message, field and type on the wire, in order, plus the frame format. Its
+/// FNV-1a hash is [`SCHEMA_KEY`].
+///
+/// How to update: whenever a message, one of its fields (name, type, order), an enum
+/// variant (including those of `Status`, `ControllerConfig`, `FingerShape`, `SkewParams`,
+/// `Mode`) or the frame format changes, edit this string so it describes the new
+/// definitions. `tests/protocol.rs` (`schema_key_is_pinned`) then fails: add a new line to
+/// its `SCHEMA_HISTORY` with the new key and the new golden digest it prints. That test
+/// also fails when the encoding changes while this string does not (the golden digest
+/// moves but the key does not), and its exhaustive matches stop compiling when a variant
+/// or field is added, so a change cannot slip through unnoticed.
+pub const SCHEMA: &str = "\
+softgrip-protocol;\
+frame=cobs(postcard(msg)+crc32_iscsi_le(postcard(msg)))+0x00;\
+Request{Hello{version:u16,schema_key:u32},Configure(ControllerConfig),Sensor(SensorFrame),\
+GetStats,ResetStats};\
+Reply{Hello{version:u16,schema_key:u32,max_frame_len:u16},\
+Configured(Result<(),WireConfigError>),Command(CommandFrame),Stats(Stats),\
+NotConfigured{seq:u32}};\
+SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment_nm:f32,\
+normal_force_n:f32};\
+CommandFrame{seq:u32,normal_force_n:f32,n_slip_n:f32,utilisation:f32,status:Status,\
+fault_active:bool};\
+Status{Ok,Saturated,SensorFault,StaleInput};\
+Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
+ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,cost_unit:CostUnit};\
+CostUnit{Nanoseconds,Instructions,Cycles};\
+WireConfigError{param:String<32>,message:String<96>};\
+ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
+c_m_per_n_gamma:f64,gamma:f64,half_length_m:f64,safety:f64,n_min_n:f64,n_max_n:f64,\
+rise_rate_n_per_s:f64,fall_rate_n_per_s:f64,tick_period_s:f64,stale_timeout_s:f64,\
+fault_force_n:f64,force_range_n:f64,moment_range_nm:f64,mode:Mode,force_nodes:u16,\
+quadrature_order:u16,table_samples:u16,aspect_count:u16};\
+FingerShape{Rect,Disc};\
+SkewParams{delta_over_a:f64,alpha:f64,locus_over_a:f64};\
+Mode{Ellipse,Table}";
+
+/// A key that changes whenever the message definitions change: the 32-bit FNV-1a hash of
+/// [`SCHEMA`]. Both ends exchange it in `Hello` and refuse to talk on a mismatch.
+pub const SCHEMA_KEY: u32 = fnv1a_32(SCHEMA.as_bytes());
+
+/// 32-bit FNV-1a over `bytes` (offset basis `0x811c9dc5`, prime `0x01000193`).
+pub const fn fnv1a_32(bytes: &[u8]) -> u32 {
+    let mut hash: u32 = 0x811c_9dc5;
+    let mut rest = bytes;
+    while let Some((&b, tail)) = rest.split_first() {
+        hash ^= b as u32;
+        hash = hash.wrapping_mul(0x0100_0193);
+        rest = tail;
+    }
+    hash
+}
+
+/// One measurement from the fingertip sensor (host → device inside [`Request::Sensor`]).
+///
+/// Floats travel bit for bit: NaN and infinities arrive as sent, and it is the controller
+/// that rejects them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SensorFrame {
+    /// Sequence number, chosen by the sender; echoed in the [`CommandFrame`].
+    pub seq: u32,
+    /// Time of the measurement \[µs\].
+    pub timestamp_us: u64,
+    /// Tangential force components `(f_x, f_y)` \[N\].
+    pub tangential_force_n: [f32; 2],
+    /// Torsional moment about the contact normal \[N·m\].
+    pub torsional_moment_nm: f32,
+    /// Measured normal force \[N\].
+    pub normal_force_n: f32,
+}
+
+/// The controller's answer to one [`SensorFrame`] (device → host inside
+/// [`Reply::Command`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CommandFrame {
+    /// The `seq` of the sensor frame this answers.
+    pub seq: u32,
+    /// Commanded normal force \[N\].
+    pub normal_force_n: f32,
+    /// Least normal force that holds the measured load without slip \[N\].
+    pub n_slip_n: f32,
+    /// How much of the friction limit the load uses at the commanded force.
+    pub utilisation: f32,
+    /// What the tick reports about itself.
+    pub status: Status,
+    /// Whether the controller is at (or moving to) its fault force.
+    pub fault_active: bool,
+}
+
+/// The unit of the tick costs in [`Stats`]: whatever the device can measure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CostUnit {
+    /// Wall-clock nanoseconds (host builds).
+    Nanoseconds,
+    /// Retired instructions (e.g. a simulator's instruction counter).
+    Instructions,
+    /// CPU cycles (e.g. the Cortex-M DWT cycle counter).
+    Cycles,
+}
+
+/// Link and timing counters of the device (device → host inside [`Reply::Stats`]).
+///
+/// The first four have the meaning of the [`FrameDecoder`](super::FrameDecoder) counters
+/// of the same names. All counters saturate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Stats {
+    /// Good frames received.
+    pub frames_received: u32,
+    /// Frames dropped for a CRC mismatch.
+    pub crc_errors: u32,
+    /// Frames dropped for invalid COBS or a message that did not decode.
+    pub decode_errors: u32,
+    /// Frames dropped for being longer than the receive buffer.
+    pub overruns: u32,
+    /// Frames sent.
+    pub frames_sent: u32,
+    /// Controller ticks run.
+    pub ticks: u32,
+    /// Greatest cost of one tick, in `cost_unit`.
+    pub worst_tick_cost: u32,
+    /// Cost of the latest tick, in `cost_unit`.
+    pub last_tick_cost: u32,
+    /// Cost of the start-up precomputation (the last successful `Configure`), in
+    /// `cost_unit`.
+    pub startup_cost: u32,
+    /// The unit of the costs.
+    pub cost_unit: CostUnit,
+}
+
+/// A [`ConfigError`] in a form that crosses the wire: the parameter's name and the
+/// error's message, both truncated to fit (device → host inside [`Reply::Configured`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WireConfigError {
+    /// The name of the rejected parameter ([`ConfigError::param`]), at most 32 bytes.
+    pub param: String<32>,
+    /// The error's `Display` text, at most 96 bytes.
+    pub message: String<96>,
+}
+
+impl WireConfigError {
+    /// Copies `err`'s parameter name and message, cutting each (at a `char` boundary) to
+    /// its capacity when too long. Never fails, never panics.
+    pub fn from_config_error(err: &ConfigError) -> Self {
+        let mut param = String::new();
+        let mut message = String::new();
+        // `Truncating` never reports an error, so neither can these writes.
+        let _ = Truncating::new(&mut param).write_str(err.param());
+        let _ = write!(Truncating::new(&mut message), "{err}");
+        Self { param, message }
+    }
+}
+
+impl From<&ConfigError> for WireConfigError {
+    fn from(err: &ConfigError) -> Self {
+        Self::from_config_error(err)
+    }
+}
+
+impl fmt::Display for WireConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// A `fmt::Write` into a fixed string that drops whatever does not fit, from the first
+/// character that does not fit on.
+struct Truncating<'a, const N: usize> {
+    out: &'a mut String<N>,
+    full: bool,
+}
+
+impl<'a, const N: usize> Truncating<'a, N> {
+    fn new(out: &'a mut String<N>) -> Self {
+        Self { out, full: false }
+    }
+}
+
+impl<const N: usize> Write for Truncating<'_, N> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        for c in s.chars() {
+            if self.full || self.out.push(c).is_err() {
+                self.full = true;
+                break;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Host → device.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Request {
+    /// Opens the session; the device answers [`Reply::Hello`].
+    Hello {
+        /// The host's [`PROTOCOL_VERSION`].
+        version: u16,
+        /// The host's [`SCHEMA_KEY`].
+        schema_key: u32,
+    },
+    /// (Re)configures the controller; the device answers [`Reply::Configured`].
+    Configure(ControllerConfig),
+    /// One measurement; the device answers [`Reply::Command`], or
+    /// [`Reply::NotConfigured`] before a valid configuration.
+    Sensor(SensorFrame),
+    /// Asks for the counters; the device answers [`Reply::Stats`].
+    GetStats,
+    /// Zeroes the counters; the device answers [`Reply::Stats`] with the zeroed values.
+    ResetStats,
+}
+
+impl Request {
+    /// `Hello` with this build's [`PROTOCOL_VERSION`] and [`SCHEMA_KEY`].
+    pub const fn hello() -> Self {
+        Request::Hello {
+            version: PROTOCOL_VERSION,
+            schema_key: SCHEMA_KEY,
+        }
+    }
+}
+
+/// [`MAX_FRAME_LEN`] as it travels in [`Reply::Hello`].
+pub const MAX_FRAME_LEN_U16: u16 = {
+    assert!(MAX_FRAME_LEN <= u16::MAX as usize);
+    MAX_FRAME_LEN as u16
+};
+
+/// Device → host.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Reply {
+    /// Answers [`Request::Hello`] with the device's side.
+    Hello {
+        /// The device's [`PROTOCOL_VERSION`].
+        version: u16,
+        /// The device's [`SCHEMA_KEY`].
+        schema_key: u32,
+        /// The longest frame the device sends or accepts, delimiter included
+        /// ([`MAX_FRAME_LEN`]).
+        max_frame_len: u16,
+    },
+    /// Answers [`Request::Configure`]: `Ok` once the controller runs with the new
+    /// configuration, or why it was rejected (the previous configuration, if any, stays).
+    Configured(Result<(), WireConfigError>),
+    /// Answers [`Request::Sensor`].
+    Command(CommandFrame),
+    /// Answers [`Request::GetStats`] and [`Request::ResetStats`].
+    Stats(Stats),
+    /// Answers a [`Request::Sensor`] that arrived before a valid configuration.
+    NotConfigured {
+        /// The `seq` of that sensor frame.
+        seq: u32,
+    },
+}
+
+impl Reply {
+    /// `Hello` with this build's [`PROTOCOL_VERSION`], [`SCHEMA_KEY`] and
+    /// [`MAX_FRAME_LEN`].
+    pub const fn hello() -> Self {
+        Reply::Hello {
+            version: PROTOCOL_VERSION,
+            schema_key: SCHEMA_KEY,
+            max_frame_len: MAX_FRAME_LEN_U16,
+        }
+    }
+}

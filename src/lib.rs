@@ -16,6 +16,7 @@
 
 pub mod contact;
 pub mod controller;
+pub mod device;
 pub mod error;
 pub mod fls;
 pub mod partial_slip;

@@ -13,6 +13,7 @@ use std::io::Write;
 /// Largest `--samples`: the sweep table's fixed capacity less its closing point.
 pub const MAX_SAMPLES: usize = 4096;
 
+/// Patch shape on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ShapeArg {
     /// Hemicylindrical fingertip: rectangular patch `[-l, l] × [-a, a]`.
@@ -21,6 +22,7 @@ pub enum ShapeArg {
     Disc,
 }
 
+/// Output format of `fls`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Format {
     /// Aligned columns for people.
@@ -31,6 +33,7 @@ pub enum Format {
     Json,
 }
 
+/// Arithmetic of the sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Precision {
     /// Double precision (default).

@@ -1,12 +1,10 @@
-//! `host-sim`: the std side of softgrip. Today it computes friction limit surfaces
-//! (`fls`); the grasp simulator and the serial link come with later work.
+//! `host-sim`: the std side of softgrip (see the crate's library docs).
 //!
 //! Exit codes: 0 on success, 2 on a bad argument (with a one-line reason naming it), 1 on
 //! any other failure.
 
-mod fls_cmd;
-
 use clap::{Parser, Subcommand};
+use host_sim::{fls_cmd, required_force_cmd, CliError};
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.
@@ -21,15 +19,8 @@ struct Cli {
 enum Command {
     /// Sweep the friction limit surface of one fingertip configuration.
     Fls(fls_cmd::FlsArgs),
-}
-
-/// A failure with its exit code.
-#[derive(Debug)]
-pub enum CliError {
-    /// A bad argument: exit code 2.
-    Usage(String),
-    /// Anything else: exit code 1.
-    Failed(String),
+    /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
+    RequiredForce(required_force_cmd::RequiredForceArgs),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +44,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Fls(args) => fls_cmd::run(&args),
+        Command::RequiredForce(args) => required_force_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

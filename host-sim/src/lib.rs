@@ -1,0 +1,20 @@
+//! `host-sim`: the std side of softgrip.
+//!
+//! - [`fls_cmd`]: friction-limit-surface sweeps (`host-sim fls`).
+//! - [`required_force_cmd`]: the slip-prevention rule for one load (`host-sim
+//!   required-force`).
+//! - [`link`]: the plant's side of the serial link to the device running the controller;
+//!   by default the firmware loop on a thread of its own behind a pseudo-terminal.
+
+pub mod fls_cmd;
+pub mod link;
+pub mod required_force_cmd;
+
+/// A command-line failure with its exit code.
+#[derive(Debug)]
+pub enum CliError {
+    /// A bad argument: exit code 2.
+    Usage(String),
+    /// Anything else: exit code 1.
+    Failed(String),
+}

@@ -1,0 +1,292 @@
+//! `host-sim required-force`: MODEL.md's slip-prevention rule for one load, computed by
+//! the controller's own start-up grid and solver.
+
+use crate::fls_cmd::ShapeArg;
+use crate::CliError;
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use softgrip::contact::ContactSize;
+use softgrip::controller::{
+    Controller, ControllerConfig, FingerShape, Libm, Micromath, Mode, SkewParams, Status, TickMath,
+};
+use softgrip::{ConfigError, Real};
+
+/// How the rule tests the load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ModeArg {
+    /// The Eq. 10 ellipse with the exact pitch at l/a(N).
+    Ellipse,
+    /// The exact limit surface, tabulated.
+    Table,
+}
+
+/// Output format of `required-force`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum OutFormat {
+    /// Aligned lines for people.
+    Table,
+    /// One JSON object.
+    Json,
+}
+
+/// Arithmetic of the grid and solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PrecisionArg {
+    /// Double precision (default).
+    F64,
+    /// Single precision, as the firmware's tick.
+    F32,
+}
+
+/// Math backend of the solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MathArg {
+    /// libm's correctly rounded sqrt.
+    Libm,
+    /// micromath's approximate sqrt (f32 only).
+    Micromath,
+}
+
+/// Arguments of `host-sim required-force`.
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct RequiredForceArgs {
+    /// Tangential force |f_t| [N] (the sign is ignored).
+    #[arg(long)]
+    ft: f64,
+    /// Torsional moment |m_n| [N·m] (the sign is ignored).
+    #[arg(long)]
+    mn: f64,
+    /// Friction coefficient μ > 0.
+    #[arg(long)]
+    mu: f64,
+    /// Contact-size coefficient c in a = c·N^γ [m/N^γ].
+    #[arg(long)]
+    c: f64,
+    /// Contact-size exponent γ in [0, 1/2].
+    #[arg(long)]
+    gamma: f64,
+    /// Fingertip shape.
+    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
+    shape: ShapeArg,
+    /// Half-length l of the rectangular patch [m] (ignored for the disc).
+    #[arg(long, default_value_t = 0.01)]
+    length: f64,
+    /// Pressure exponent k >= 1 (`inf` for uniform).
+    #[arg(long, default_value_t = 2.0)]
+    k: f64,
+    /// Safety factor s >= 1.
+    #[arg(long, default_value_t = 1.3)]
+    safety: f64,
+    /// Ellipse or table.
+    #[arg(long, value_enum, default_value_t = ModeArg::Ellipse)]
+    mode: ModeArg,
+    /// Skew of the pressure peak Δ/a in [0, 1) (table mode sees it; 0 = symmetric).
+    #[arg(long, default_value_t = 0.0)]
+    skew: f64,
+    /// Rate α of the skew law.
+    #[arg(long, default_value_t = 1.1)]
+    alpha: f64,
+    /// Half-axis h/a of the peak's locus; default Δ/2.
+    #[arg(long)]
+    locus: Option<f64>,
+    /// Lower end of the controller's force grid [N]; answers below it are closed-form
+    /// bounds.
+    #[arg(long, default_value_t = 0.2)]
+    n_min: f64,
+    /// Upper end of the force grid [N]: a larger answer is reported as saturated.
+    #[arg(long, default_value_t = 20.0)]
+    n_max: f64,
+    /// Arithmetic of the grid and the solver.
+    #[arg(long, value_enum, default_value_t = PrecisionArg::F64)]
+    precision: PrecisionArg,
+    /// Square root of the tick.
+    #[arg(long, value_enum, default_value_t = MathArg::Libm)]
+    math: MathArg,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = OutFormat::Table)]
+    format: OutFormat,
+}
+
+/// The answer, as `--format json` prints it.
+#[derive(Debug, Serialize)]
+pub struct RequiredForce {
+    /// `N_req(s)` [N].
+    pub normal_force: f64,
+    /// `N_slip = N_req(1)` [N].
+    pub n_slip: f64,
+    /// Contact half-width at `normal_force` [m].
+    pub a: f64,
+    /// Utilisation of the (unscaled) load at `command`: `1/s` unless the grid clamps.
+    pub utilisation: f64,
+    /// `ok`, or `saturated` when `normal_force > n_max`.
+    pub status: &'static str,
+    /// What a controller with this grid would command: `normal_force` clamped into
+    /// `[n_min, n_max]` [N].
+    pub command: f64,
+    /// `ellipse` or `table`.
+    pub mode: &'static str,
+    /// `f64` or `f32`.
+    pub precision: &'static str,
+    /// `libm` or `micromath`.
+    pub math: &'static str,
+}
+
+/// The command-line flag of a configuration field.
+fn flag(param: &str) -> &str {
+    match param {
+        "c_m_per_n_gamma" => "c",
+        "half_length_m" => "length",
+        "n_min_n" | "fault_force_n" => "n-min",
+        "n_max_n" => "n-max",
+        "force_range_n" => "ft",
+        "moment_range_nm" => "mn",
+        other => other,
+    }
+}
+
+fn usage(e: ConfigError) -> CliError {
+    let text = e.to_string();
+    let rest = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
+    CliError::Usage(format!("--{}: {rest}", flag(e.param())))
+}
+
+fn finite(name: &str, v: f64) -> Result<f64, CliError> {
+    if v.is_finite() {
+        Ok(v.abs())
+    } else {
+        Err(CliError::Usage(format!(
+            "--{name}: must be a finite number"
+        )))
+    }
+}
+
+/// The controller configuration the arguments describe.
+pub fn config(args: &RequiredForceArgs) -> Result<ControllerConfig, CliError> {
+    let ft = finite("ft", args.ft)?;
+    let mn = finite("mn", args.mn)?;
+    let skew = if args.skew == 0.0 {
+        None
+    } else {
+        Some(SkewParams {
+            delta_over_a: args.skew,
+            alpha: args.alpha,
+            locus_over_a: args.locus.unwrap_or(args.skew / 2.0),
+        })
+    };
+    Ok(ControllerConfig {
+        mu: args.mu,
+        shape: match args.shape {
+            ShapeArg::Rect => FingerShape::Rect,
+            ShapeArg::Disc => FingerShape::Disc,
+        },
+        k: args.k,
+        skew,
+        c_m_per_n_gamma: args.c,
+        gamma: args.gamma,
+        half_length_m: args.length,
+        safety: args.safety,
+        n_min_n: args.n_min,
+        n_max_n: args.n_max,
+        fault_force_n: args.n_min,
+        // The sensor must be able to read the load.
+        force_range_n: (2.0 * ft).max(100.0),
+        moment_range_nm: (2.0 * mn).max(2.0),
+        mode: match args.mode {
+            ModeArg::Ellipse => Mode::Ellipse,
+            ModeArg::Table => Mode::Table,
+        },
+        force_nodes: 64,
+        ..ControllerConfig::default()
+    })
+}
+
+fn compute<T: Real, M: TickMath<T>>(
+    cfg: ControllerConfig,
+    ft: f64,
+    mn: f64,
+) -> Result<RequiredForce, CliError> {
+    let ctl = Controller::<T, M>::new_precomputed_in::<f64>(cfg).map_err(usage)?;
+    let (f, m) = (T::of(ft), T::of(mn));
+    let fail = || CliError::Failed("the solver returned no answer".into());
+    let req = ctl
+        .required_force(f, m, T::of(cfg.safety))
+        .ok_or_else(fail)?
+        .force_n;
+    let slip = ctl.required_force(f, m, T::one()).ok_or_else(fail)?.force_n;
+    let command = req.max(T::of(cfg.n_min_n)).min(T::of(cfg.n_max_n));
+    let utilisation = ctl.utilisation(f, m, command).ok_or_else(fail)?;
+    let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma).map_err(usage)?;
+    let n = req.to_f64();
+    let status = if n > cfg.n_max_n {
+        Status::Saturated
+    } else {
+        Status::Ok
+    };
+    Ok(RequiredForce {
+        normal_force: n,
+        n_slip: slip.to_f64(),
+        a: contact.half_width_m(n),
+        utilisation: utilisation.to_f64(),
+        status: status.name(),
+        command: command.to_f64(),
+        mode: cfg.mode.name(),
+        precision: if core::mem::size_of::<T>() == 4 {
+            "f32"
+        } else {
+            "f64"
+        },
+        math: M::NAME,
+    })
+}
+
+/// Computes the answer for the arguments.
+pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliError> {
+    let cfg = config(args)?;
+    let (ft, mn) = (args.ft.abs(), args.mn.abs());
+    match (args.precision, args.math) {
+        (PrecisionArg::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),
+        (PrecisionArg::F32, MathArg::Libm) => compute::<f32, Libm>(cfg, ft, mn),
+        (PrecisionArg::F32, MathArg::Micromath) => compute::<f32, Micromath>(cfg, ft, mn),
+        (PrecisionArg::F64, MathArg::Micromath) => Err(CliError::Usage(
+            "--math: micromath is f32 only (add --precision f32)".into(),
+        )),
+    }
+}
+
+/// Runs `host-sim required-force`.
+pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
+    let r = required_force(args)?;
+    match args.format {
+        OutFormat::Json => {
+            let text =
+                serde_json::to_string_pretty(&r).map_err(|e| CliError::Failed(e.to_string()))?;
+            println!("{text}");
+        }
+        OutFormat::Table => {
+            println!(
+                "normal_force  {:>14.6e} N   N_req(s), s = {}",
+                r.normal_force, args.safety
+            );
+            println!("n_slip        {:>14.6e} N", r.n_slip);
+            println!(
+                "a             {:>14.6e} m   contact half-width at normal_force",
+                r.a
+            );
+            println!(
+                "utilisation   {:>14.6}     of the load at the command",
+                r.utilisation
+            );
+            println!("status        {:>14}", r.status);
+            println!(
+                "command       {:>14.6e} N   clamped to [n_min, n_max]",
+                r.command
+            );
+            println!(
+                "mode          {:>14}     {} {}",
+                r.mode, r.precision, r.math
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,282 @@
+//! The device side of the link: the firmware loop that serves the [`protocol`] over any
+//! byte stream and drives the grip actuator.
+//!
+//! [`Device`] owns the controller (built from a [`Request::Configure`]), the frame decoder
+//! and the counters of [`Stats`]. It is the same code on the Cortex-M4F (over a USART) and
+//! in `host-sim` (over a pseudo-terminal, on a thread of its own), so the two links give
+//! the same answers. The loop is generic over
+//! - the stream: [`embedded_io::Read`] + [`embedded_io::Write`];
+//! - the actuator: any [`ForceActuator`], for example [`PwmForce`] over an
+//!   `embedded-hal` [`SetDutyCycle`] channel;
+//! - the cost clock: a [`CostClock`] that reads a cycle or instruction counter (TIM2 under
+//!   QEMU) or a host clock, to account for each tick's cost.
+//!
+//! The tick runs in f32 (the M4F's hardware precision) with the math backend `M`; the
+//! start-up precomputation also runs in f32, as it would on the target.
+
+use crate::controller::{Controller, Libm, Measurement, TickMath};
+use crate::protocol::{
+    encode, CommandFrame, CostUnit, DefaultFrameDecoder, Reply, Request, SensorFrame, Stats,
+    WireConfigError, MAX_FRAME_LEN,
+};
+use embedded_hal::pwm::SetDutyCycle;
+
+/// Where the commanded normal force goes.
+pub trait ForceActuator {
+    /// Applies the commanded normal force [N] (finite, within `[N_min, N_max]`).
+    fn set_force_n(&mut self, force_n: f32);
+}
+
+/// No actuator: the command only travels back over the link.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct NoActuator;
+
+impl ForceActuator for NoActuator {
+    fn set_force_n(&mut self, _force_n: f32) {}
+}
+
+/// A force command as a PWM duty cycle: `duty = force / full_scale_n` of the channel's
+/// maximum, clamped to `[0, max]` (for example a current-controlled motor whose stall
+/// force is `full_scale_n` at 100 %).
+#[derive(Debug)]
+pub struct PwmForce<P> {
+    pwm: P,
+    full_scale_n: f32,
+}
+
+impl<P: SetDutyCycle> PwmForce<P> {
+    /// Wraps a PWM channel whose full duty gives `full_scale_n` [N] (`> 0`; a non-positive
+    /// or non-finite value is read as 1 N).
+    pub fn new(pwm: P, full_scale_n: f32) -> Self {
+        let full_scale_n = if full_scale_n > 0.0 && full_scale_n.is_finite() {
+            full_scale_n
+        } else {
+            1.0
+        };
+        Self { pwm, full_scale_n }
+    }
+
+    /// The channel back.
+    pub fn release(self) -> P {
+        self.pwm
+    }
+}
+
+impl<P: SetDutyCycle> ForceActuator for PwmForce<P> {
+    fn set_force_n(&mut self, force_n: f32) {
+        let max = self.pwm.max_duty_cycle();
+        let frac = (force_n / self.full_scale_n).clamp(0.0, 1.0);
+        // `frac` is in [0, 1] (NaN clamps to NaN and casts to 0), so the product fits u16.
+        let duty = (frac * f32::from(max) + 0.5) as u16;
+        // A PWM error cannot be reported from here; the next tick sets the duty again.
+        let _ = self.pwm.set_duty_cycle(duty.min(max));
+    }
+}
+
+/// A free-running counter for cost accounting.
+pub trait CostClock {
+    /// What one count is.
+    const UNIT: CostUnit;
+    /// The present count (wrapping).
+    fn now(&mut self) -> u32;
+}
+
+/// No clock: every cost reads 0.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct NoClock;
+
+impl CostClock for NoClock {
+    const UNIT: CostUnit = CostUnit::Cycles;
+    fn now(&mut self) -> u32 {
+        0
+    }
+}
+
+/// The device: controller, decoder and counters. See the module docs.
+#[derive(Debug)]
+pub struct Device<M = Libm> {
+    controller: Option<Controller<f32, M>>,
+    decoder: DefaultFrameDecoder,
+    frames_sent: u32,
+    ticks: u32,
+    worst_tick_cost: u32,
+    last_tick_cost: u32,
+    startup_cost: u32,
+    tx: [u8; MAX_FRAME_LEN],
+}
+
+impl<M: TickMath<f32>> Default for Device<M> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<M: TickMath<f32>> Device<M> {
+    /// An unconfigured device: it answers sensor frames with [`Reply::NotConfigured`]
+    /// until a configuration is accepted.
+    pub fn new() -> Self {
+        Self {
+            controller: None,
+            decoder: DefaultFrameDecoder::new(),
+            frames_sent: 0,
+            ticks: 0,
+            worst_tick_cost: 0,
+            last_tick_cost: 0,
+            startup_cost: 0,
+            tx: [0; MAX_FRAME_LEN],
+        }
+    }
+
+    /// The controller, once configured.
+    pub fn controller(&self) -> Option<&Controller<f32, M>> {
+        self.controller.as_ref()
+    }
+
+    /// The counters, as [`Request::GetStats`] reports them.
+    pub fn stats<C: CostClock>(&self) -> Stats {
+        let c = self.decoder.counters();
+        Stats {
+            frames_received: c.frames_received,
+            crc_errors: c.crc_errors,
+            decode_errors: c.decode_errors,
+            overruns: c.overruns,
+            frames_sent: self.frames_sent,
+            ticks: self.ticks,
+            worst_tick_cost: self.worst_tick_cost,
+            last_tick_cost: self.last_tick_cost,
+            startup_cost: self.startup_cost,
+            cost_unit: C::UNIT,
+        }
+    }
+
+    /// Answers one request, driving `actuator` on sensor frames. Never fails: a bad
+    /// configuration is answered with the error and leaves the previous controller (if
+    /// any) in place.
+    pub fn handle<A: ForceActuator, C: CostClock>(
+        &mut self,
+        request: Request,
+        actuator: &mut A,
+        clock: &mut C,
+    ) -> Reply {
+        match request {
+            Request::Hello { .. } => Reply::hello(),
+            Request::Configure(cfg) => {
+                let start = clock.now();
+                let built = Controller::<f32, M>::new(cfg);
+                let cost = clock.now().wrapping_sub(start);
+                match built {
+                    Ok(ctl) => {
+                        actuator.set_force_n(ctl.command_n());
+                        self.controller = Some(ctl);
+                        self.startup_cost = cost;
+                        #[cfg(feature = "defmt")]
+                        defmt::info!("configured: start-up cost {=u32}", cost);
+                        Reply::Configured(Ok(()))
+                    }
+                    Err(e) => {
+                        #[cfg(feature = "defmt")]
+                        defmt::warn!("configuration refused: {=str}", e.param());
+                        Reply::Configured(Err(WireConfigError::from_config_error(&e)))
+                    }
+                }
+            }
+            Request::Sensor(frame) => self.tick(frame, actuator, clock),
+            Request::GetStats => Reply::Stats(self.stats::<C>()),
+            Request::ResetStats => {
+                self.decoder.reset_counters();
+                self.frames_sent = 0;
+                self.ticks = 0;
+                self.worst_tick_cost = 0;
+                self.last_tick_cost = 0;
+                Reply::Stats(self.stats::<C>())
+            }
+        }
+    }
+
+    fn tick<A: ForceActuator, C: CostClock>(
+        &mut self,
+        frame: SensorFrame,
+        actuator: &mut A,
+        clock: &mut C,
+    ) -> Reply {
+        let Some(ctl) = self.controller.as_mut() else {
+            return Reply::NotConfigured { seq: frame.seq };
+        };
+        let m = Measurement {
+            tangential_force_n: frame.tangential_force_n,
+            torsional_moment_nm: frame.torsional_moment_nm,
+            normal_force_n: frame.normal_force_n,
+            timestamp_us: frame.timestamp_us,
+        };
+        let start = clock.now();
+        let out = ctl.tick(&m);
+        let cost = clock.now().wrapping_sub(start);
+        actuator.set_force_n(out.command_n);
+        self.ticks = self.ticks.saturating_add(1);
+        self.last_tick_cost = cost;
+        self.worst_tick_cost = self.worst_tick_cost.max(cost);
+        #[cfg(feature = "defmt")]
+        defmt::trace!(
+            "tick {=u32}: {=f32} N, {}",
+            frame.seq,
+            out.command_n,
+            out.status
+        );
+        Reply::Command(CommandFrame {
+            seq: frame.seq,
+            normal_force_n: out.command_n,
+            n_slip_n: out.n_slip_n,
+            utilisation: out.utilisation,
+            status: out.status,
+            fault_active: out.fault_active,
+        })
+    }
+
+    /// Reads once from `io` (blocking until at least one byte arrives, as
+    /// [`embedded_io::Read`] does), answers every complete request in what arrived, and
+    /// writes the replies. Returns the number of bytes read (0 at the end of the stream).
+    /// Corrupt frames are counted by the decoder and get no reply.
+    pub fn poll<IO, A, C>(
+        &mut self,
+        io: &mut IO,
+        actuator: &mut A,
+        clock: &mut C,
+    ) -> Result<usize, IO::Error>
+    where
+        IO: embedded_io::Read + embedded_io::Write,
+        A: ForceActuator,
+        C: CostClock,
+    {
+        let mut rx = [0u8; 64];
+        let n = io.read(&mut rx)?;
+        let bytes = rx.get(..n).unwrap_or_default();
+        for &byte in bytes {
+            let Some(Ok(request)) = self.decoder.push::<Request>(byte) else {
+                continue;
+            };
+            let reply = self.handle(request, actuator, clock);
+            if let Ok(len) = encode(&reply, &mut self.tx) {
+                io.write_all(self.tx.get(..len).unwrap_or_default())?;
+                io.flush()?;
+                self.frames_sent = self.frames_sent.saturating_add(1);
+            }
+        }
+        Ok(n)
+    }
+
+    /// Serves `io` until the stream ends (a read of 0 bytes) or fails.
+    pub fn run<IO, A, C>(
+        &mut self,
+        io: &mut IO,
+        actuator: &mut A,
+        clock: &mut C,
+    ) -> Result<(), IO::Error>
+    where
+        IO: embedded_io::Read + embedded_io::Write,
+        A: ForceActuator,
+        C: CostClock,
+    {
+        while self.poll(io, actuator, clock)? > 0 {}
+        Ok(())
+    }
+}

@@ -1,9 +1,11 @@
 //! Cost of the controller: one tick in each mode, precision and math backend, and the
 //! start-up precomputation.
 //!
-//! Run with `cargo bench --bench tick`. Each tick benchmark cycles through 256 measurements
-//! (loads from pure translation to pure torsion, answers spread over `[N_min, N_max]` and
-//! beyond), so the median is that of a typical mix, not of one lucky load.
+//! Run with `cargo bench --bench tick`. The `tick_{mode}_*` benchmarks cycle through 256
+//! unrelated measurements (loads from pure translation to pure torsion, answers spread
+//! over `[N_min, N_max]` and beyond): every tick starts its search afresh, the cost of a
+//! load that jumps. The `tick_smooth_*` benchmarks follow a load that turns once a second
+//! at 1 kHz, as in a grip loop, where the previous tick's grid interval is a good hint.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -49,7 +51,39 @@ fn bench_tick<T: Real, M: TickMath<T>>(c: &mut Criterion, name: &str, mode: Mode
     });
 }
 
+/// A grasp at 1 kHz: the load turns slowly (one cycle a second), as in a control loop,
+/// so consecutive ticks fall in the same grid interval.
+fn bench_smooth_tick(c: &mut Criterion, name: &str, mode: Mode) {
+    let cfg = ControllerConfig {
+        mode,
+        ..ControllerConfig::default()
+    };
+    let mut ctl = Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).expect("valid");
+    let cycle: Vec<Measurement<f32>> = (0..1000)
+        .map(|k| {
+            let phase = k as f32 * (std::f32::consts::TAU / 1000.0);
+            Measurement {
+                tangential_force_n: [2.0 + 1.5 * phase.sin(), 0.5 * phase.cos()],
+                torsional_moment_nm: 0.01 * (1.0 + phase.cos()),
+                normal_force_n: 4.0,
+                timestamp_us: 0,
+            }
+        })
+        .collect();
+    let mut k = 0u64;
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            k += 1;
+            let mut m = cycle[(k % 1000) as usize];
+            m.timestamp_us = k * 1000;
+            black_box(ctl.tick(black_box(&m)))
+        })
+    });
+}
+
 fn ticks(c: &mut Criterion) {
+    bench_smooth_tick(c, "tick_smooth_ellipse_f32_libm", Mode::Ellipse);
+    bench_smooth_tick(c, "tick_smooth_table_f32_libm", Mode::Table);
     for mode in [Mode::Ellipse, Mode::Table] {
         let n = mode.name();
         bench_tick::<f32, Libm>(c, &format!("tick_{n}_f32_libm"), mode);

@@ -85,6 +85,7 @@ pub struct Controller<T, M = Libm> {
     last: Option<TickOutput<T>>,
     last_good_us: Option<u64>,
     bad_ticks: u32,
+    slip_node: usize,
     _math: PhantomData<M>,
 }
 
@@ -119,6 +120,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             last: None,
             last_good_us: None,
             bad_ticks: 0,
+            slip_node: 0,
             capacity,
             config,
             _math: PhantomData,
@@ -146,6 +148,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.last = None;
         self.last_good_us = None;
         self.bad_ticks = 0;
+        self.slip_node = 0;
     }
 
     /// `N_req` for a load, without touching the controller's state: the pure rule of
@@ -232,7 +235,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         let [fx, fy] = m.tangential_force_n;
         let f = M::sqrt(fx * fx + fy * fy) * self.inv_mu;
         let mz = m.torsional_moment_nm.abs() * self.inv_mu;
-        let slip = self.capacity.required_force::<M>(f, mz);
+        let slip = self
+            .capacity
+            .required_force_near::<M>(f, mz, self.slip_node);
+        self.slip_node = slip.node;
         let req = self
             .capacity
             .required_force_scaled::<M>(f, mz, &slip, self.safety);

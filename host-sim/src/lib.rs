@@ -3,12 +3,15 @@
 //! - [`fls_cmd`]: friction-limit-surface sweeps (`host-sim fls`).
 //! - [`required_force_cmd`]: the slip-prevention rule for one load (`host-sim
 //!   required-force`).
+//! - [`sim`] and [`simulate_cmd`]: the grasp simulator (`host-sim simulate`).
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
 //!   by default the firmware loop on a thread of its own behind a pseudo-terminal.
 
 pub mod fls_cmd;
 pub mod link;
 pub mod required_force_cmd;
+pub mod sim;
+pub mod simulate_cmd;
 
 /// A command-line failure with its exit code.
 #[derive(Debug)]

@@ -4,7 +4,7 @@
 //! any other failure.
 
 use clap::{Parser, Subcommand};
-use host_sim::{fls_cmd, required_force_cmd, CliError};
+use host_sim::{fls_cmd, required_force_cmd, simulate_cmd, CliError};
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.
@@ -19,6 +19,8 @@ struct Cli {
 enum Command {
     /// Sweep the friction limit surface of one fingertip configuration.
     Fls(fls_cmd::FlsArgs),
+    /// Run grasp scenes against controllers over the serial link and report.
+    Simulate(simulate_cmd::SimulateArgs),
     /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
     RequiredForce(required_force_cmd::RequiredForceArgs),
 }
@@ -45,6 +47,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Fls(args) => fls_cmd::run(&args),
         Command::RequiredForce(args) => required_force_cmd::run(&args),
+        Command::Simulate(args) => simulate_cmd::run_cmd(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

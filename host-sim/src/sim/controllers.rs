@@ -1,0 +1,355 @@
+//! The controllers a scene can run against: softgrip over the serial link, and the
+//! baselines it is compared with (in-process, with the same clamps and rate limits).
+//!
+//! | name | rule |
+//! | --- | --- |
+//! | `softgrip`, `softgrip-ellipse`, `softgrip-table` | MODEL.md's rule on the device, over the link |
+//! | `constant` | a fixed grip force |
+//! | `coulomb` | `N = s·f_t/μ`: translation only, torsion ignored |
+//! | `box` | `N = s·max(f_t/μ, m_n/m̂)`, `m̂ = μ·a_ref·pitch` (a box-shaped limit, as some tactile-gripper code uses) |
+//! | `fixed-torsion` | `N = s·sqrt((f_t/μ)² + (m_n/(μ_t))²)`, `μ_t = μ·a_ref·pitch`: the elliptic soft-contact cone of physics engines, with a patch of constant size |
+//! | `slip-servo` | starts light; after a detected slip raises the force by half plus 0.5 N, then relaxes slowly |
+//!
+//! `a_ref` is the contact half-width at the constant baseline's force: the size a
+//! fixed-patch model would be tuned at.
+
+use crate::link::pty::PtyLink;
+use crate::link::{Link, LinkError};
+use crate::sim::effects::LinkFate;
+use crate::sim::record::LinkSummary;
+use softgrip::controller::{ControllerConfig, Libm, Mode};
+use softgrip::protocol::{Reply, Request, SensorFrame};
+use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
+
+/// Every controller name `--controller` accepts (besides `all`).
+pub const NAMES: [&str; 8] = [
+    "softgrip",
+    "softgrip-ellipse",
+    "softgrip-table",
+    "constant",
+    "coulomb",
+    "box",
+    "fixed-torsion",
+    "slip-servo",
+];
+
+/// The controllers `--controller all` runs (softgrip's default mode is `softgrip`).
+pub const ALL: [&str; 7] = [
+    "softgrip",
+    "softgrip-table",
+    "constant",
+    "coulomb",
+    "box",
+    "fixed-torsion",
+    "slip-servo",
+];
+
+/// What a controller answers to one tick.
+#[derive(Debug, Clone, Copy)]
+pub struct Answer {
+    /// Commanded normal force [N].
+    pub command_n: f64,
+    /// Status name.
+    pub status: &'static str,
+}
+
+/// A grip controller as the plant drives it.
+pub trait GripController {
+    /// The name.
+    fn name(&self) -> &str;
+    /// One tick: the frames the link delivers this tick (possibly none, possibly damaged)
+    /// and whether a slip sensor has seen the object slide. `None`: no new command.
+    fn tick(
+        &mut self,
+        frames: &[(SensorFrame, LinkFate)],
+        slip_seen: bool,
+    ) -> Result<Option<Answer>, LinkError>;
+    /// The link's accounting at the end of a run.
+    fn link_summary(&mut self) -> Result<LinkSummary, LinkError>;
+}
+
+/// softgrip on the device loop, over the in-process pseudo-terminal link.
+#[derive(Debug)]
+pub struct SoftgripLink {
+    name: String,
+    link: PtyLink,
+    sent: u64,
+    lost: u64,
+    base: (u32, u32, u32, u32),
+}
+
+impl SoftgripLink {
+    /// Starts a device, configures it and records its counters' starting point.
+    pub fn start(name: &str, cfg: ControllerConfig) -> Result<Self, LinkError> {
+        let mut link = PtyLink::spawn::<Libm>()?;
+        match link.exchange(&Request::Configure(cfg))? {
+            Reply::Configured(Ok(())) => {}
+            other => return Err(LinkError::Unexpected(Box::new(other))),
+        }
+        let base = stats(&mut link)?;
+        Ok(Self {
+            name: name.to_string(),
+            link,
+            sent: 0,
+            lost: 0,
+            base,
+        })
+    }
+}
+
+fn stats(link: &mut PtyLink) -> Result<(u32, u32, u32, u32), LinkError> {
+    match link.exchange(&Request::GetStats)? {
+        Reply::Stats(s) => Ok((
+            s.ticks,
+            s.crc_errors + s.decode_errors,
+            s.overruns,
+            s.frames_received,
+        )),
+        other => Err(LinkError::Unexpected(Box::new(other))),
+    }
+}
+
+impl GripController for SoftgripLink {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn tick(
+        &mut self,
+        frames: &[(SensorFrame, LinkFate)],
+        _slip_seen: bool,
+    ) -> Result<Option<Answer>, LinkError> {
+        let mut answer = None;
+        for (frame, fate) in frames {
+            self.sent += 1;
+            match fate {
+                LinkFate::Drop => self.lost += 1,
+                LinkFate::Corrupt(bytes) => self.link.inject(bytes)?,
+                LinkFate::Deliver => {
+                    // Lockstep: wait for this frame's command (a stale reply would carry
+                    // another sequence number).
+                    for _ in 0..4 {
+                        match self.link.exchange(&Request::Sensor(*frame))? {
+                            Reply::Command(c) if c.seq == frame.seq => {
+                                answer = Some(Answer {
+                                    command_n: f64::from(c.normal_force_n),
+                                    status: c.status.name(),
+                                });
+                                break;
+                            }
+                            _ => continue,
+                        }
+                    }
+                }
+            }
+        }
+        Ok(answer)
+    }
+
+    fn link_summary(&mut self) -> Result<LinkSummary, LinkError> {
+        let (ticks, corrupt, overruns, _) = stats(&mut self.link)?;
+        Ok(LinkSummary {
+            frames_sent: self.sent,
+            frames_received: u64::from(ticks - self.base.0),
+            frames_corrupt: u64::from(corrupt - self.base.1) + u64::from(overruns - self.base.2),
+            frames_lost: self.lost,
+            commands_missing: 0,
+        })
+    }
+}
+
+/// The limits every baseline shares with softgrip: `[N_min, N_max]` and the rise and
+/// fall rates.
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    n_min: f64,
+    n_max: f64,
+    rise: f64,
+    fall: f64,
+}
+
+impl Limits {
+    fn step(&self, current: f64, target: f64) -> f64 {
+        target
+            .min(current + self.rise)
+            .max(current - self.fall)
+            .clamp(self.n_min, self.n_max)
+    }
+}
+
+/// The in-process baselines.
+#[derive(Debug)]
+pub struct Baseline {
+    name: String,
+    kind: Kind,
+    limits: Limits,
+    mu: f64,
+    safety: f64,
+    torsion_arm_m: f64,
+    constant_n: f64,
+    command: f64,
+    sent: u64,
+    lost: u64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kind {
+    Constant,
+    Coulomb,
+    Box,
+    FixedTorsion,
+    SlipServo,
+}
+
+impl Baseline {
+    /// The baseline `name` for a controller configuration; `constant_n` is the constant
+    /// baseline's force and the force at which the fixed patch size is taken.
+    pub fn new(name: &str, cfg: &ControllerConfig, constant_n: f64) -> Option<Self> {
+        let kind = match name {
+            "constant" => Kind::Constant,
+            "coulomb" => Kind::Coulomb,
+            "box" => Kind::Box,
+            "fixed-torsion" => Kind::FixedTorsion,
+            "slip-servo" => Kind::SlipServo,
+            _ => return None,
+        };
+        // The fixed patch: the contact's size and pitch at the constant force.
+        let a_ref = cfg.c_m_per_n_gamma * constant_n.powf(cfg.gamma);
+        let shape = match cfg.shape {
+            softgrip::controller::FingerShape::Rect => Shape::Rect {
+                aspect: cfg.half_length_m / a_ref,
+            },
+            softgrip::controller::FingerShape::Disc => Shape::Disc,
+        };
+        let pitch = FlsModel::<f64>::new(FlsConfig {
+            shape,
+            k: cfg.k,
+            skew: None,
+            order: QuadratureOrder::DEFAULT,
+        })
+        .map(|m| m.pitch())
+        .ok()?;
+        let dt = cfg.tick_period_s;
+        Some(Self {
+            name: name.to_string(),
+            kind,
+            limits: Limits {
+                n_min: cfg.n_min_n,
+                n_max: cfg.n_max_n,
+                rise: cfg.rise_rate_n_per_s * dt,
+                fall: cfg.fall_rate_n_per_s * dt,
+            },
+            mu: cfg.mu,
+            safety: cfg.safety,
+            torsion_arm_m: a_ref * pitch,
+            constant_n,
+            command: if kind == Kind::Constant {
+                constant_n
+            } else {
+                cfg.n_min_n
+            },
+            sent: 0,
+            lost: 0,
+        })
+    }
+}
+
+impl GripController for Baseline {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn tick(
+        &mut self,
+        frames: &[(SensorFrame, LinkFate)],
+        slip_seen: bool,
+    ) -> Result<Option<Answer>, LinkError> {
+        // A damaged frame is lost, as the CRC would lose it.
+        let mut last = None;
+        for (frame, fate) in frames {
+            self.sent += 1;
+            if *fate == LinkFate::Deliver {
+                last = Some(*frame);
+            } else {
+                self.lost += 1;
+            }
+        }
+        let Some(frame) = last else {
+            return Ok(None);
+        };
+        let [fx, fy] = frame.tangential_force_n;
+        let f = f64::from(fx).hypot(f64::from(fy));
+        let m = f64::from(frame.torsional_moment_nm).abs();
+        if !(f.is_finite() && m.is_finite()) {
+            // Bad reading: hold.
+            return Ok(Some(Answer {
+                command_n: self.command,
+                status: "sensor_fault",
+            }));
+        }
+        let (s, mu, arm) = (self.safety, self.mu, self.torsion_arm_m);
+        let target = match self.kind {
+            Kind::Constant => self.constant_n,
+            Kind::Coulomb => s * f / mu,
+            Kind::Box => s * (f / mu).max(m / (mu * arm)),
+            Kind::FixedTorsion => s * (f / mu).hypot(m / (mu * arm)),
+            Kind::SlipServo => {
+                if slip_seen {
+                    (self.command * 1.5 + 0.5).min(self.limits.n_max)
+                } else {
+                    self.limits.n_min
+                }
+            }
+        };
+        self.command = match self.kind {
+            Kind::Constant => target.clamp(self.limits.n_min, self.limits.n_max),
+            // A slip servo jumps up at once and relaxes at the fall rate.
+            Kind::SlipServo if slip_seen => target,
+            _ => self.limits.step(self.command, target),
+        };
+        Ok(Some(Answer {
+            command_n: self.command,
+            status: "none",
+        }))
+    }
+
+    fn link_summary(&mut self) -> Result<LinkSummary, LinkError> {
+        Ok(LinkSummary {
+            frames_sent: self.sent,
+            frames_received: self.sent - self.lost,
+            frames_corrupt: 0,
+            frames_lost: self.lost,
+            commands_missing: 0,
+        })
+    }
+}
+
+/// Builds the controller `name` for a scene's configuration.
+pub fn build(
+    name: &str,
+    cfg: &ControllerConfig,
+    constant_n: f64,
+) -> Result<Box<dyn GripController>, String> {
+    let softgrip = |mode: Option<Mode>| -> Result<Box<dyn GripController>, String> {
+        let cfg = ControllerConfig {
+            mode: mode.unwrap_or(cfg.mode),
+            ..*cfg
+        };
+        SoftgripLink::start(name, cfg)
+            .map(|c| Box::new(c) as Box<dyn GripController>)
+            .map_err(|e| e.to_string())
+    };
+    match name {
+        "softgrip" => softgrip(None),
+        "softgrip-ellipse" => softgrip(Some(Mode::Ellipse)),
+        "softgrip-table" => softgrip(Some(Mode::Table)),
+        other => Baseline::new(other, cfg, constant_n)
+            .map(|b| Box::new(b) as Box<dyn GripController>)
+            .ok_or_else(|| {
+                format!(
+                    "--controller: unknown controller \"{other}\", expected all or one of {}",
+                    NAMES.join(", ")
+                )
+            }),
+    }
+}

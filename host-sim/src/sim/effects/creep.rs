@@ -1,0 +1,46 @@
+//! Viscoelastic creep of the contact size: a standard-linear-solid (Zener) response, the
+//! Kelvin–Voigt element in series with a spring, as in the viscoelastic fingertip models
+//! the paper cites (Kelvin–Voigt; Fung's quasi-linear viscoelasticity; Kao and Tiezzi).
+//! When the normal force changes, a fraction `instant_fraction` of the change in contact
+//! half-width happens at once and the rest relaxes with time constant `time_constant_s`:
+//!
+//! `a = φ·a_eq(N) + (1 − φ)·a_slow`, `τ·da_slow/dt = a_eq(N) − a_slow`,
+//!
+//! with `a_eq = c·N^γ`. Right after a squeeze the patch is smaller than the controller's
+//! model assumes, so it resists less torsion.
+
+use super::{check_keys, Effect, World};
+use crate::sim::scene::{Scene, SceneError};
+
+/// The creeping contact size.
+#[derive(Debug)]
+pub struct Creep {
+    time_constant_s: f64,
+    instant_fraction: f64,
+    slow_m: Option<f64>,
+}
+
+impl Creep {
+    /// Settings: `time_constant_s` (0.3), `instant_fraction` (0.6).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        let e = "creep";
+        check_keys(scene, e, &["time_constant_s", "instant_fraction"])?;
+        Ok(Self {
+            time_constant_s: scene.effect_param(text, e, "time_constant_s", 0.3, 1e-6, 1e6)?,
+            instant_fraction: scene.effect_param(text, e, "instant_fraction", 0.6, 0.0, 1.0)?,
+            slow_m: None,
+        })
+    }
+}
+
+impl Effect for Creep {
+    fn name(&self) -> &'static str {
+        "creep"
+    }
+    fn contact(&mut self, w: &mut World) {
+        let eq = w.half_width_eq_m;
+        let slow = self.slow_m.get_or_insert(eq);
+        *slow += (eq - *slow) * (1.0 - (-w.dt_s / self.time_constant_s).exp());
+        w.half_width_m = self.instant_fraction * eq + (1.0 - self.instant_fraction) * *slow;
+    }
+}

@@ -1,0 +1,36 @@
+//! Gravity and payload torque: the object's weight `m·g` on the grasp (vertical, across
+//! the cylinder axis: the paper's Fig. 4 loading direction) and, with the centre of mass
+//! `r` off the grasp axis, the payload torque `m·g·r` about it (statics).
+//!
+//! The weight comes onto the grasp as the object leaves its support: the scene's
+//! `support_fraction` (0 on the table, 1 once lifted) scales both.
+
+use super::{check_keys, Effect, World};
+use crate::sim::scene::{Scene, SceneError};
+
+/// Weight and payload torque.
+#[derive(Debug)]
+pub struct Gravity {
+    g_m_s2: f64,
+}
+
+impl Gravity {
+    /// Setting: `g_m_s2` (default 9.81).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        check_keys(scene, "gravity", &["g_m_s2"])?;
+        Ok(Self {
+            g_m_s2: scene.effect_param(text, "gravity", "g_m_s2", 9.81, 0.0, 1e3)?,
+        })
+    }
+}
+
+impl Effect for Gravity {
+    fn name(&self) -> &'static str {
+        "gravity"
+    }
+    fn load(&mut self, w: &mut World) {
+        let weight = w.mass_kg * self.g_m_s2 * w.support_fraction;
+        w.force_n[1] += weight;
+        w.moment_nm += weight * w.com_offset_m;
+    }
+}

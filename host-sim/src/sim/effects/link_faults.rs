@@ -1,0 +1,76 @@
+//! Link faults: on the serial line a frame may lose a byte's worth of bits (a bit flip),
+//! be cut short (truncation: the receiver sees the delimiter early), or vanish (a dropped
+//! frame). The damaged bytes really cross the link to the device, whose CRC and COBS
+//! checks must catch them; the device counts them, and the plant counts what it dropped,
+//! so every frame is accounted for.
+
+use super::{check_keys, rng_for, Effect, LinkFate};
+use crate::sim::scene::{Scene, SceneError};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use softgrip::protocol::{encode, Request, SensorFrame, MAX_FRAME_LEN};
+
+/// Bit flips, truncation and drops.
+#[derive(Debug)]
+pub struct LinkFaults {
+    bit_flip_prob: f64,
+    truncate_prob: f64,
+    drop_prob: f64,
+    rng: ChaCha8Rng,
+}
+
+impl LinkFaults {
+    /// Settings (probabilities per frame): `bit_flip_prob` (0.01), `truncate_prob`
+    /// (0.005), `drop_prob` (0.005).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        let e = "link_faults";
+        check_keys(scene, e, &["bit_flip_prob", "truncate_prob", "drop_prob"])?;
+        Ok(Self {
+            bit_flip_prob: scene.effect_param(text, e, "bit_flip_prob", 0.01, 0.0, 1.0)?,
+            truncate_prob: scene.effect_param(text, e, "truncate_prob", 0.005, 0.0, 1.0)?,
+            drop_prob: scene.effect_param(text, e, "drop_prob", 0.005, 0.0, 1.0)?,
+            rng: rng_for(scene, e),
+        })
+    }
+}
+
+impl Effect for LinkFaults {
+    fn name(&self) -> &'static str {
+        "link_faults"
+    }
+    fn link(&mut self, frames: &mut Vec<(SensorFrame, LinkFate)>) {
+        for (frame, fate) in frames.iter_mut() {
+            if *fate != LinkFate::Deliver {
+                continue;
+            }
+            let roll = self.rng.random::<f64>();
+            if roll < self.drop_prob {
+                *fate = LinkFate::Drop;
+                continue;
+            }
+            let mut buf = [0u8; MAX_FRAME_LEN];
+            let Ok(len) = encode(&Request::Sensor(*frame), &mut buf) else {
+                continue;
+            };
+            let mut bytes = buf[..len].to_vec();
+            if roll < self.drop_prob + self.truncate_prob {
+                // Cut somewhere inside the frame and end it there.
+                let cut = self.rng.random_range(1..len - 1);
+                bytes.truncate(cut);
+                bytes.push(0);
+                *fate = LinkFate::Corrupt(bytes);
+            } else if roll < self.drop_prob + self.truncate_prob + self.bit_flip_prob {
+                // Flip one bit of the block (not the delimiter). A flip that would make a
+                // byte 0x00 flips the next bit instead: a new delimiter would split the
+                // frame in two, and the accounting counts frames, not pieces.
+                let i = self.rng.random_range(0..len - 1);
+                let mut bit = self.rng.random_range(0..8u32);
+                if bytes[i] ^ (1 << bit) == 0 {
+                    bit = (bit + 1) % 8;
+                }
+                bytes[i] ^= 1 << bit;
+                *fate = LinkFate::Corrupt(bytes);
+            }
+        }
+    }
+}

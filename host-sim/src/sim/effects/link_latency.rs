@@ -1,0 +1,41 @@
+//! Link latency: each sensor frame reaches the controller `delay_ticks` ticks after it
+//! was taken (a serial link at a fixed baud rate plus buffering), so the command answers
+//! an old load. Frames keep their order.
+
+use super::{check_keys, Effect, LinkFate};
+use crate::sim::scene::{Scene, SceneError};
+use softgrip::protocol::SensorFrame;
+use std::collections::VecDeque;
+
+/// A delay line of frames.
+#[derive(Debug)]
+pub struct LinkLatency {
+    delay_ticks: usize,
+    queue: VecDeque<(SensorFrame, LinkFate)>,
+}
+
+impl LinkLatency {
+    /// Setting: `delay_ticks` (2).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        check_keys(scene, "link_latency", &["delay_ticks"])?;
+        let d = scene.effect_param(text, "link_latency", "delay_ticks", 2.0, 0.0, 1e5)?;
+        Ok(Self {
+            delay_ticks: d as usize,
+            queue: VecDeque::new(),
+        })
+    }
+}
+
+impl Effect for LinkLatency {
+    fn name(&self) -> &'static str {
+        "link_latency"
+    }
+    fn link(&mut self, frames: &mut Vec<(SensorFrame, LinkFate)>) {
+        self.queue.extend(frames.drain(..));
+        while self.queue.len() > self.delay_ticks {
+            if let Some(f) = self.queue.pop_front() {
+                frames.push(f);
+            }
+        }
+    }
+}

@@ -1,0 +1,235 @@
+//! The effects a scene may call for. Each is a module with its source; the simulator
+//! builds its step pipeline from the scene's `effects` list, and an effect that is not
+//! listed is neither built nor stepped (nor does it draw random numbers: each effect owns
+//! a random stream seeded from the scene seed and its own name).
+//!
+//! An effect hooks into one or more stages of a plant step, in this order:
+//! 1. [`Effect::load`]: forces and moments on the object (gravity, disturbances);
+//! 2. [`Effect::sense`]: what the fingertip sensor reports (noise, bias, faults);
+//! 3. [`Effect::link`]: what the serial link does to the sensor frame on its way
+//!    (latency, faults);
+//! 4. [`Effect::actuate`]: how the commanded normal force becomes the applied one (lag,
+//!    limits);
+//! 5. [`Effect::contact`]: the true contact (creep of its size, partial slip).
+//!
+//! Skewed pressure in the true contact changes the true limit surface itself, so it acts
+//! when the ground truth is built ([`Effect::true_skew`]).
+
+pub mod actuator;
+pub mod creep;
+pub mod disturbance;
+pub mod gravity;
+pub mod link_faults;
+pub mod link_latency;
+pub mod partial_slip;
+pub mod sensor_faults;
+pub mod sensor_noise;
+pub mod skewed_pressure;
+
+use crate::sim::scene::{Scene, SceneError};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use softgrip::controller::SkewParams;
+use softgrip::protocol::SensorFrame;
+use std::time::{Duration, Instant};
+
+/// Every effect a scene may list, in pipeline order.
+pub const NAMES: [&str; 10] = [
+    "gravity",
+    "disturbance",
+    "sensor_noise",
+    "sensor_faults",
+    "link_latency",
+    "link_faults",
+    "actuator",
+    "creep",
+    "partial_slip",
+    "skewed_pressure",
+];
+
+/// The plant's state as the effects see it during one step. Loads are on the whole
+/// object; the two fingertips of the pinch each carry half.
+#[derive(Debug, Clone, Default)]
+pub struct World {
+    /// Time [s].
+    pub t_s: f64,
+    /// Step [s].
+    pub dt_s: f64,
+    /// Object mass [kg].
+    pub mass_kg: f64,
+    /// Inertia about the grasp axis [kg·m²].
+    pub inertia_kg_m2: f64,
+    /// Lever arm of gravity about the grasp axis [m].
+    pub com_offset_m: f64,
+    /// How much of the object's weight the grasp carries (0 on the table, 1 lifted).
+    pub support_fraction: f64,
+    /// Tangential force the grasp must apply to the object: x along the cylinder axis,
+    /// y across it (vertical) [N].
+    pub force_n: [f64; 2],
+    /// Moment the grasp must apply about its axis [N·m].
+    pub moment_nm: f64,
+    /// The controller's latest command [N].
+    pub command_n: f64,
+    /// The normal force each fingertip applies [N].
+    pub normal_n: f64,
+    /// Equilibrium contact half-width at `normal_n`, `c·N^γ` [m].
+    pub half_width_eq_m: f64,
+    /// True contact half-width [m] (equal to the equilibrium unless creep is on).
+    pub half_width_m: f64,
+    /// Tangential micro-displacement before gross slip (Eq. 5) [m], when partial slip
+    /// is on.
+    pub micro_slip_m: f64,
+}
+
+impl World {
+    /// The tangential load on one contact: half the object's [N].
+    pub fn contact_force_n(&self) -> [f64; 2] {
+        [self.force_n[0] / 2.0, self.force_n[1] / 2.0]
+    }
+
+    /// The torsional load on one contact [N·m].
+    pub fn contact_moment_nm(&self) -> f64 {
+        self.moment_nm / 2.0
+    }
+}
+
+/// What the link does to one sensor frame.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LinkFate {
+    /// Delivered intact.
+    Deliver,
+    /// Never arrives.
+    Drop,
+    /// Arrives with these bytes instead of its encoding (bit flips, truncation). A
+    /// controller without a byte link loses it, as the CRC would.
+    Corrupt(Vec<u8>),
+}
+
+/// One effect. Every hook defaults to doing nothing.
+pub trait Effect: std::fmt::Debug {
+    /// The name a scene lists.
+    fn name(&self) -> &'static str;
+    /// Stage 1: add forces and moments on the object.
+    fn load(&mut self, _w: &mut World) {}
+    /// Stage 2: change what the sensor reports.
+    fn sense(&mut self, _w: &World, _frame: &mut SensorFrame) {}
+    /// Stage 3: delay or damage the frame on the link. `frames` holds the frames due
+    /// for delivery this tick (normally the one just sensed); `fates` their fates.
+    fn link(&mut self, _frames: &mut Vec<(SensorFrame, LinkFate)>) {}
+    /// Stage 4: turn the command into the applied normal force.
+    fn actuate(&mut self, _w: &mut World) {}
+    /// Stage 5: the true contact.
+    fn contact(&mut self, _w: &mut World) {}
+    /// The skew of the true contact, if this effect makes one.
+    fn true_skew(&self) -> Option<SkewParams> {
+        None
+    }
+}
+
+/// A random stream of the effect's own.
+pub fn rng_for(scene: &Scene, effect: &str) -> ChaCha8Rng {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for b in effect.bytes() {
+        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+    }
+    ChaCha8Rng::seed_from_u64(scene.seed ^ h)
+}
+
+/// Refuses keys an effect does not know (typos would otherwise be silently ignored).
+pub fn check_keys(scene: &Scene, effect: &str, known: &[&str]) -> Result<(), SceneError> {
+    if let Some(table) = scene.effect.get(effect) {
+        for key in table.keys() {
+            if !known.contains(&key.as_str()) {
+                return Err(SceneError(format!(
+                    "effect.{effect}.{key}: unknown setting, expected one of {}",
+                    known.join(", ")
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The step pipeline: the listed effects, in [`NAMES`] order, with their step cost.
+#[derive(Debug)]
+pub struct Pipeline {
+    effects: Vec<Box<dyn Effect>>,
+    cost: Vec<Duration>,
+}
+
+impl Pipeline {
+    /// Builds the listed effects from their settings (`text` is the scene file, for line
+    /// numbers in errors).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        let mut effects: Vec<Box<dyn Effect>> = Vec::new();
+        for name in NAMES {
+            if !scene.effects.iter().any(|e| e == name) {
+                continue;
+            }
+            let e: Box<dyn Effect> = match name {
+                "gravity" => Box::new(gravity::Gravity::build(scene, text)?),
+                "disturbance" => Box::new(disturbance::Disturbance::build(scene, text)?),
+                "sensor_noise" => Box::new(sensor_noise::SensorNoise::build(scene, text)?),
+                "sensor_faults" => Box::new(sensor_faults::SensorFaults::build(scene, text)?),
+                "link_latency" => Box::new(link_latency::LinkLatency::build(scene, text)?),
+                "link_faults" => Box::new(link_faults::LinkFaults::build(scene, text)?),
+                "actuator" => Box::new(actuator::Actuator::build(scene, text)?),
+                "creep" => Box::new(creep::Creep::build(scene, text)?),
+                "partial_slip" => Box::new(partial_slip::PartialSlip::build(scene, text)?),
+                "skewed_pressure" => Box::new(skewed_pressure::SkewedPressure::build(scene, text)?),
+                _ => continue,
+            };
+            effects.push(e);
+        }
+        let cost = vec![Duration::ZERO; effects.len()];
+        Ok(Self { effects, cost })
+    }
+
+    /// The names of the built effects, in order.
+    pub fn names(&self) -> Vec<String> {
+        self.effects.iter().map(|e| e.name().to_string()).collect()
+    }
+
+    /// The true contact's skew, if an effect makes one.
+    pub fn true_skew(&self) -> Option<SkewParams> {
+        self.effects.iter().find_map(|e| e.true_skew())
+    }
+
+    fn each(&mut self, mut f: impl FnMut(&mut dyn Effect)) {
+        for (e, c) in self.effects.iter_mut().zip(self.cost.iter_mut()) {
+            let start = Instant::now();
+            f(e.as_mut());
+            *c += start.elapsed();
+        }
+    }
+
+    /// Stage 1.
+    pub fn load(&mut self, w: &mut World) {
+        self.each(|e| e.load(w));
+    }
+    /// Stage 2.
+    pub fn sense(&mut self, w: &World, frame: &mut SensorFrame) {
+        self.each(|e| e.sense(w, frame));
+    }
+    /// Stage 3.
+    pub fn link(&mut self, frames: &mut Vec<(SensorFrame, LinkFate)>) {
+        self.each(|e| e.link(frames));
+    }
+    /// Stage 4.
+    pub fn actuate(&mut self, w: &mut World) {
+        self.each(|e| e.actuate(w));
+    }
+    /// Stage 5.
+    pub fn contact(&mut self, w: &mut World) {
+        self.each(|e| e.contact(w));
+    }
+
+    /// Time spent in each effect so far.
+    pub fn costs(&self) -> Vec<(String, Duration)> {
+        self.effects
+            .iter()
+            .zip(&self.cost)
+            .map(|(e, c)| (e.name().to_string(), *c))
+            .collect()
+    }
+}

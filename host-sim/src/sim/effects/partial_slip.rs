@@ -1,0 +1,43 @@
+//! Cattaneo–Mindlin partial slip (MODEL.md, the paper's Eq. 4 and 5): below gross slip the
+//! contact's edge already slides, the stick zone shrinks to `â = a(1 − T/μN)^{1/3}`, and
+//! the fingertip deflects tangentially by
+//! `δ = 3μN/(16a)·((2−ν)/G)·[1 − (1 − T/μN)^{2/3}]`. The plant reports `δ` (the
+//! micro-displacement a tactile sensor would see before the object moves); the largest
+//! value is a run metric.
+
+use super::{check_keys, Effect, World};
+use crate::sim::scene::{Scene, SceneError};
+use softgrip::partial_slip::{deflection_m, Elasticity};
+
+/// The micro-displacement before gross slip.
+#[derive(Debug)]
+pub struct PartialSlip {
+    elasticity: Elasticity<f64>,
+    mu: f64,
+}
+
+impl PartialSlip {
+    /// Uses the finger's `young_modulus_pa` and `poisson`; no settings of its own.
+    pub fn build(scene: &Scene, _text: Option<&str>) -> Result<Self, SceneError> {
+        check_keys(scene, "partial_slip", &[])?;
+        let elasticity = Elasticity::new(scene.finger.young_modulus_pa, scene.finger.poisson)
+            .map_err(|e| SceneError(format!("finger.{e}")))?;
+        Ok(Self {
+            elasticity,
+            mu: scene.finger.mu,
+        })
+    }
+}
+
+impl Effect for PartialSlip {
+    fn name(&self) -> &'static str {
+        "partial_slip"
+    }
+    fn contact(&mut self, w: &mut World) {
+        let [fx, fy] = w.contact_force_n();
+        let t = fx.hypot(fy);
+        let limit = self.mu * w.normal_n;
+        let ratio = if limit > 0.0 { t / limit } else { 1.0 };
+        w.micro_slip_m = deflection_m(&self.elasticity, limit, w.half_width_m, ratio);
+    }
+}

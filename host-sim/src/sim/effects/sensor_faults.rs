@@ -1,0 +1,88 @@
+//! Sensor faults: dropouts (the sensor repeats its last frame, timestamp included: the
+//! controller sees stale input), NaN readings (a broken channel or a bus glitch), and
+//! saturation (every channel clipped at the sensor's range, silently, as an overloaded
+//! strain gauge does).
+
+use super::{check_keys, rng_for, Effect, World};
+use crate::sim::scene::{Scene, SceneError};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use softgrip::protocol::SensorFrame;
+
+/// Dropouts, NaN and saturation.
+#[derive(Debug)]
+pub struct SensorFaults {
+    dropout_prob: f64,
+    nan_prob: f64,
+    saturation_n: f64,
+    saturation_nm: f64,
+    last: Option<SensorFrame>,
+    rng: ChaCha8Rng,
+}
+
+impl SensorFaults {
+    /// Settings: `dropout_prob` (0.01 per frame), `nan_prob` (0.005), `saturation_n`
+    /// (infinite: off), `saturation_nm` (infinite).
+    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+        let e = "sensor_faults";
+        check_keys(
+            scene,
+            e,
+            &["dropout_prob", "nan_prob", "saturation_n", "saturation_nm"],
+        )?;
+        Ok(Self {
+            dropout_prob: scene.effect_param(text, e, "dropout_prob", 0.01, 0.0, 1.0)?,
+            nan_prob: scene.effect_param(text, e, "nan_prob", 0.005, 0.0, 1.0)?,
+            saturation_n: scene.effect_param(
+                text,
+                e,
+                "saturation_n",
+                f64::INFINITY,
+                0.0,
+                f64::INFINITY,
+            )?,
+            saturation_nm: scene.effect_param(
+                text,
+                e,
+                "saturation_nm",
+                f64::INFINITY,
+                0.0,
+                f64::INFINITY,
+            )?,
+            last: None,
+            rng: rng_for(scene, e),
+        })
+    }
+}
+
+impl Effect for SensorFaults {
+    fn name(&self) -> &'static str {
+        "sensor_faults"
+    }
+    fn sense(&mut self, _w: &World, frame: &mut SensorFrame) {
+        let sat_f = self.saturation_n as f32;
+        let sat_m = self.saturation_nm as f32;
+        for f in &mut frame.tangential_force_n {
+            *f = f.clamp(-sat_f, sat_f);
+        }
+        frame.normal_force_n = frame.normal_force_n.clamp(-sat_f, sat_f);
+        frame.torsional_moment_nm = frame.torsional_moment_nm.clamp(-sat_m, sat_m);
+        let seq = frame.seq;
+        if let Some(last) = self
+            .last
+            .filter(|_| self.rng.random::<f64>() < self.dropout_prob)
+        {
+            // The sensor repeats its previous reading; only the link's sequence number is
+            // new.
+            *frame = SensorFrame { seq, ..last };
+        } else if self.rng.random::<f64>() < self.nan_prob {
+            match self.rng.random_range(0..4) {
+                0 => frame.tangential_force_n[0] = f32::NAN,
+                1 => frame.tangential_force_n[1] = f32::NAN,
+                2 => frame.torsional_moment_nm = f32::NAN,
+                _ => frame.normal_force_n = f32::NAN,
+            }
+        }
+        self.last = Some(*frame);
+    }
+}

@@ -1,0 +1,10 @@
+//! The grasp simulator: scenes, effects, ground truth, controllers and reports.
+
+pub mod controllers;
+pub mod effects;
+pub mod record;
+pub mod report;
+pub mod run;
+pub mod scene;
+pub mod task;
+pub mod truth;

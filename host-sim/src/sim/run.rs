@@ -1,0 +1,305 @@
+//! One run: a scene against one controller, in lockstep, one plant step per tick.
+//!
+//! Each tick:
+//! 1. the task's loads and the load effects give the wrench the grasp must apply to the
+//!    object; each of the two fingertips carries half;
+//! 2. the sensor reports the contact load and the applied normal force (sensor effects);
+//! 3. the frame crosses the link (link effects) and the controller answers with a
+//!    command (softgrip over the pseudo-terminal; the baselines in-process);
+//! 4. the ground truth: the true contact size (creep), the true limit surface (skew), the
+//!    utilisation of the true load, and, outside the surface, slip;
+//! 5. the actuator (lag, limits) turns the command into the next tick's normal force.
+//!
+//! Slip is accounted quasi-statically: while the true load lies outside the true limit
+//! surface (utilisation `u > 1`) the contact can transmit only the fraction `1/u` of it,
+//! and the rest accelerates the object relative to the fingertips
+//! (`a = (1 − 1/u)·|F|/m`, `α = (1 − 1/u)·|M|/I`); once the load is back inside, the
+//! contact sticks again. A slip event is an episode of sliding after at least 10 ms of
+//! sticking. Once the object has slid [`DROP_DISTANCE_M`] or turned [`DROP_ROTATION_RAD`]
+//! it is counted as dropped (metric `dropped_at_s`) and slip is no longer accumulated.
+
+use crate::sim::controllers;
+use crate::sim::effects::{LinkFate, Pipeline, World};
+use crate::sim::record::{RunSummary, Sample};
+use crate::sim::scene::{Scene, SceneError};
+use crate::sim::task;
+use crate::sim::truth::Truth;
+use indicatif::ProgressBar;
+use softgrip::controller::{ControllerConfig, FingerShape, Mode};
+use softgrip::protocol::SensorFrame;
+use std::collections::{BTreeMap, VecDeque};
+use std::time::{Duration, Instant};
+
+/// Slip distance at which the object is lost from the grasp [m].
+pub const DROP_DISTANCE_M: f64 = 0.02;
+/// Slip rotation at which the object is lost from the grasp [rad].
+pub const DROP_ROTATION_RAD: f64 = 0.5;
+
+/// A finished run.
+#[derive(Debug)]
+pub struct RunOutput {
+    /// The summary.
+    pub summary: RunSummary,
+    /// One sample per tick.
+    pub samples: Vec<Sample>,
+    /// The true limit surface at the run's mean normal force, in `(f̃, m̃/pitch)`.
+    pub surface: Vec<(f64, f64)>,
+}
+
+/// softgrip's configuration for a scene: the finger as the scene gives it (without the
+/// true contact's skew, which the controller does not know), the scene's controller
+/// settings, and the scene's tick rate.
+pub fn controller_config(scene: &Scene) -> Result<ControllerConfig, SceneError> {
+    let d = ControllerConfig::default();
+    let s = &scene.controller;
+    let f = &scene.finger;
+    let cfg = ControllerConfig {
+        mu: f.mu,
+        shape: if f.shape == "disc" {
+            FingerShape::Disc
+        } else {
+            FingerShape::Rect
+        },
+        k: f.k,
+        skew: None,
+        c_m_per_n_gamma: f.c,
+        gamma: f.gamma,
+        half_length_m: f.half_length_m,
+        safety: s.safety.unwrap_or(d.safety),
+        n_min_n: s.n_min_n.unwrap_or(d.n_min_n),
+        n_max_n: s.n_max_n.unwrap_or(d.n_max_n),
+        rise_rate_n_per_s: s.rise_rate_n_per_s.unwrap_or(d.rise_rate_n_per_s),
+        fall_rate_n_per_s: s.fall_rate_n_per_s.unwrap_or(d.fall_rate_n_per_s),
+        tick_period_s: 1.0 / scene.tick_hz,
+        stale_timeout_s: s
+            .stale_timeout_s
+            .unwrap_or(d.stale_timeout_s)
+            .max(1.0 / scene.tick_hz),
+        fault_force_n: s.fault_force_n.unwrap_or(d.fault_force_n),
+        force_range_n: s.force_range_n.unwrap_or(d.force_range_n),
+        moment_range_nm: s.moment_range_nm.unwrap_or(d.moment_range_nm),
+        mode: Mode::Ellipse,
+        ..d
+    };
+    cfg.validate()
+        .map_err(|e| SceneError(format!("controller: {e}")))?;
+    Ok(cfg)
+}
+
+/// Runs `scene` against the controller `controller`.
+pub fn run(
+    scene: &Scene,
+    text: Option<&str>,
+    controller: &str,
+    progress: Option<&ProgressBar>,
+) -> Result<RunOutput, String> {
+    let wall = Instant::now();
+    let cfg = controller_config(scene).map_err(|e| e.to_string())?;
+    let constant_n = scene
+        .controller
+        .constant_force_n
+        .unwrap_or(cfg.fault_force_n);
+    let mut pipeline = Pipeline::build(scene, text).map_err(|e| e.to_string())?;
+    let has_actuator = pipeline.names().iter().any(|n| n == "actuator");
+    let truth = Truth::build(
+        scene,
+        pipeline.true_skew(),
+        cfg.n_min_n * 0.05,
+        cfg.n_max_n * 1.5,
+    )
+    .map_err(|e| e.to_string())?;
+    let mut ctl = controllers::build(controller, &cfg, constant_n)?;
+
+    let dt = 1.0 / scene.tick_hz;
+    let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
+    let detect_ticks = ((0.01 * scene.tick_hz).ceil() as usize).max(1);
+    let stick_ticks = detect_ticks as u64;
+    let mut w = World {
+        dt_s: dt,
+        mass_kg: scene.object.mass_kg,
+        inertia_kg_m2: scene.object.inertia_kg_m2,
+        com_offset_m: scene.object.com_offset_m,
+        command_n: cfg.n_min_n,
+        normal_n: cfg.n_min_n,
+        ..World::default()
+    };
+    let mut samples = Vec::with_capacity(ticks as usize);
+    let mut slip_seen: VecDeque<bool> = std::iter::repeat_n(false, detect_ticks).collect();
+    let (mut v, mut omega, mut dist, mut rot) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (mut events, mut stuck_for) = (0u64, u64::MAX);
+    let (mut sum_n, mut peak_n, mut max_u, mut max_micro) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut status = "none";
+    let mut dropped_at: Option<f64> = None;
+    let mut missing = 0u64;
+    let mut core = Duration::ZERO;
+    let mut control = Duration::ZERO;
+    let period_us = (1e6 / scene.tick_hz).round().max(1.0) as u64;
+
+    for k in 0..ticks {
+        let t0 = Instant::now();
+        w.t_s = k as f64 * dt;
+        w.force_n = [0.0, 0.0];
+        w.moment_nm = 0.0;
+        w.support_fraction = task::support_fraction(scene, w.t_s);
+        task::apply(scene, &mut w);
+        core += t0.elapsed();
+        pipeline.load(&mut w);
+
+        let [fx, fy] = w.contact_force_n();
+        let mut frame = SensorFrame {
+            seq: k as u32,
+            timestamp_us: (k + 1) * period_us,
+            tangential_force_n: [fx as f32, fy as f32],
+            torsional_moment_nm: w.contact_moment_nm() as f32,
+            normal_force_n: w.normal_n as f32,
+        };
+        pipeline.sense(&w, &mut frame);
+        let sensed = frame;
+        let mut frames = vec![(frame, LinkFate::Deliver)];
+        pipeline.link(&mut frames);
+
+        let t1 = Instant::now();
+        let seen = slip_seen.pop_front().unwrap_or(false);
+        match ctl.tick(&frames, seen).map_err(|e| e.to_string())? {
+            Some(a) => {
+                w.command_n = a.command_n;
+                status = a.status;
+            }
+            None => missing += 1,
+        }
+        control += t1.elapsed();
+
+        let t2 = Instant::now();
+        w.half_width_eq_m = truth.half_width_m(w.normal_n);
+        w.half_width_m = w.half_width_eq_m;
+        core += t2.elapsed();
+        pipeline.contact(&mut w);
+        let t3 = Instant::now();
+        let ft = fx.hypot(fy);
+        let mn = w.contact_moment_nm().abs();
+        let tl = truth.evaluate(ft, mn, w.normal_n, w.half_width_m);
+        let slipping = tl.utilisation > 1.0;
+        let dropped = dropped_at.is_some();
+        if slipping && !dropped {
+            let excess = if tl.utilisation.is_finite() {
+                1.0 - 1.0 / tl.utilisation
+            } else {
+                1.0
+            };
+            v += excess * w.force_n[0].hypot(w.force_n[1]) / w.mass_kg * dt;
+            omega += excess * w.moment_nm.abs() / w.inertia_kg_m2 * dt;
+            dist += v * dt;
+            rot += omega * dt;
+            if stuck_for >= stick_ticks {
+                events += 1;
+            }
+            stuck_for = 0;
+            if dist >= DROP_DISTANCE_M || rot >= DROP_ROTATION_RAD {
+                dropped_at = Some(w.t_s);
+                dist = dist.min(DROP_DISTANCE_M);
+                rot = rot.min(DROP_ROTATION_RAD);
+            }
+        } else if !dropped {
+            v = 0.0;
+            omega = 0.0;
+            stuck_for = stuck_for.saturating_add(1);
+        }
+        slip_seen.push_back(slipping);
+        sum_n += w.normal_n;
+        peak_n = peak_n.max(w.normal_n);
+        if tl.utilisation.is_finite() {
+            max_u = max_u.max(tl.utilisation);
+        }
+        max_micro = max_micro.max(w.micro_slip_m);
+        let [mx, my] = sensed.tangential_force_n;
+        samples.push(Sample {
+            t_s: w.t_s,
+            ft_n: ft,
+            mn_nm: mn,
+            ft_meas_n: f64::from(mx).hypot(f64::from(my)),
+            mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
+            n_cmd_n: w.command_n,
+            n_true_n: w.normal_n,
+            a_true_m: w.half_width_m,
+            f_norm: tl.f_norm,
+            m_norm: tl.m_norm,
+            pitch: tl.pitch,
+            utilisation: tl.utilisation,
+            slipping,
+            slip_distance_m: dist,
+            slip_rotation_rad: rot,
+            status,
+        });
+        core += t3.elapsed();
+        if has_actuator {
+            pipeline.actuate(&mut w);
+        } else {
+            w.normal_n = w.command_n;
+        }
+        if k % 1000 == 999 {
+            if let Some(p) = progress {
+                p.inc(1000);
+            }
+        }
+    }
+    if let Some(p) = progress {
+        p.inc(ticks % 1000);
+    }
+    let mut link = ctl.link_summary().map_err(|e| e.to_string())?;
+    link.commands_missing = missing;
+
+    let effect_costs = pipeline.costs();
+    let total = core + effect_costs.iter().map(|(_, c)| *c).sum::<Duration>();
+    let share = |d: Duration| {
+        if total.is_zero() {
+            0.0
+        } else {
+            d.as_secs_f64() / total.as_secs_f64()
+        }
+    };
+    let mut step_cost_share = BTreeMap::new();
+    step_cost_share.insert("core".to_string(), share(core));
+    for (name, c) in &effect_costs {
+        step_cost_share.insert(name.clone(), share(*c));
+    }
+    let mean_n = if ticks > 0 { sum_n / ticks as f64 } else { 0.0 };
+    let wall_s = wall.elapsed().as_secs_f64();
+    let duration_s = ticks as f64 * dt;
+    let mut metrics = BTreeMap::new();
+    metrics.insert("plant_step_s".to_string(), total.as_secs_f64());
+    metrics.insert("controller_and_link_s".to_string(), control.as_secs_f64());
+    if let Some(t) = dropped_at {
+        metrics.insert("dropped_at_s".to_string(), t);
+    }
+    if pipeline.names().iter().any(|n| n == "partial_slip") {
+        metrics.insert("max_micro_slip_m".to_string(), max_micro);
+    }
+    let surface = truth.normalised_surface(truth.half_width_m(mean_n.max(cfg.n_min_n)));
+    Ok(RunOutput {
+        summary: RunSummary {
+            scene: scene.name.clone(),
+            controller: controller.to_string(),
+            slip_events: events,
+            slip_distance_m: dist,
+            slip_rotation_rad: rot,
+            mean_normal_force_n: mean_n,
+            peak_normal_force_n: peak_n,
+            expected_slip: scene.expected_slip,
+            max_utilisation: max_u,
+            ticks,
+            duration_s,
+            wall_s,
+            real_time_factor: if wall_s > 0.0 {
+                duration_s / wall_s
+            } else {
+                0.0
+            },
+            link,
+            step_cost_share,
+            effects: pipeline.names(),
+            metrics,
+        },
+        samples,
+        surface,
+    })
+}

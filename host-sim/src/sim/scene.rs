@@ -1,0 +1,419 @@
+//! Grasp scenes: TOML files that say what to simulate and which effects to include.
+//!
+//! ```toml
+//! description = "Lift a 200 g object and hold it"
+//! duration_s = 3.0
+//! tick_hz = 1000.0
+//! seed = 1
+//! expected_slip = false
+//! effects = ["gravity", "sensor_noise"]
+//!
+//! [finger]            # the true fingertip (the controller is told the same, less skew)
+//! shape = "rect"      # rect | disc
+//! k = 2.0
+//! mu = 0.8
+//! c = 2.5e-3          # a = c·N^γ [m]
+//! gamma = 0.5
+//! half_length_m = 0.01
+//! young_modulus_pa = 3e5
+//! poisson = 0.45
+//!
+//! [object]
+//! mass_kg = 0.2
+//! com_offset_m = 0.02      # lever arm of gravity about the grasp axis
+//! inertia_kg_m2 = 2e-4     # about the grasp axis
+//!
+//! [[task]]                 # load phases; they add up where they overlap
+//! kind = "lift"            # lift | hold | twist | shake | pull
+//! start_s = 0.2
+//! end_s = 0.8
+//! accel_m_s2 = 4.0
+//!
+//! [controller]             # softgrip's settings (all optional)
+//! safety = 1.3
+//!
+//! [effect.sensor_noise]    # settings of an effect (read only if it is listed)
+//! force_sd_n = 0.02
+//! ```
+//!
+//! A bad file is reported with the key and its line.
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The whole scene.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Name; defaults to the file stem.
+    #[serde(default)]
+    pub name: String,
+    /// What the scene exercises, for people.
+    #[serde(default)]
+    pub description: String,
+    /// Simulated time [s].
+    pub duration_s: f64,
+    /// Control rate [Hz]: one plant step and one controller tick per period.
+    #[serde(default = "default_tick_hz")]
+    pub tick_hz: f64,
+    /// Seed of every random effect.
+    #[serde(default)]
+    pub seed: u64,
+    /// `true` for an overload no allowed force can hold.
+    #[serde(default)]
+    pub expected_slip: bool,
+    /// The effects to simulate, by name. Only these are built and stepped.
+    #[serde(default)]
+    pub effects: Vec<String>,
+    /// The fingertip.
+    pub finger: Finger,
+    /// The held object.
+    pub object: Object,
+    /// The load phases.
+    #[serde(default)]
+    pub task: Vec<Phase>,
+    /// Controller settings.
+    #[serde(default)]
+    pub controller: ControllerSettings,
+    /// Settings of each effect, by name (ignored for effects not listed).
+    #[serde(default)]
+    pub effect: BTreeMap<String, toml::Table>,
+}
+
+fn default_tick_hz() -> f64 {
+    1000.0
+}
+
+/// The fingertip and its contact.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Finger {
+    /// `rect` (hemicylinder) or `disc` (hemisphere).
+    #[serde(default = "default_shape")]
+    pub shape: String,
+    /// Pressure exponent `k ≥ 1`.
+    #[serde(default = "default_k")]
+    pub k: f64,
+    /// Friction coefficient.
+    pub mu: f64,
+    /// `c` in `a = c·N^γ` [m/N^γ].
+    pub c: f64,
+    /// `γ` in `a = c·N^γ`.
+    pub gamma: f64,
+    /// Half-length `l` of the rectangular patch [m].
+    #[serde(default = "default_half_length")]
+    pub half_length_m: f64,
+    /// Young's modulus of the fingertip [Pa] (partial slip).
+    #[serde(default = "default_young")]
+    pub young_modulus_pa: f64,
+    /// Poisson's ratio (partial slip).
+    #[serde(default = "default_poisson")]
+    pub poisson: f64,
+}
+
+fn default_shape() -> String {
+    "rect".into()
+}
+fn default_k() -> f64 {
+    2.0
+}
+fn default_half_length() -> f64 {
+    0.01
+}
+fn default_young() -> f64 {
+    3e5
+}
+fn default_poisson() -> f64 {
+    0.45
+}
+
+/// The held object.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Object {
+    /// Mass [kg].
+    pub mass_kg: f64,
+    /// Distance of the centre of mass from the grasp axis [m]: gravity's lever arm.
+    #[serde(default)]
+    pub com_offset_m: f64,
+    /// Moment of inertia about the grasp axis [kg·m²].
+    #[serde(default = "default_inertia")]
+    pub inertia_kg_m2: f64,
+}
+
+fn default_inertia() -> f64 {
+    1e-4
+}
+
+/// One load phase, active on `[start_s, end_s)`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Phase {
+    /// `lift`, `hold`, `twist`, `shake` or `pull`.
+    pub kind: String,
+    /// Start [s].
+    pub start_s: f64,
+    /// End [s].
+    pub end_s: f64,
+    /// Lift: peak upward acceleration of a smooth (sin²) bump [m/s²].
+    #[serde(default)]
+    pub accel_m_s2: f64,
+    /// Twist: peak angular acceleration about the grasp axis of a smooth
+    /// accelerate–decelerate profile [rad/s²].
+    #[serde(default)]
+    pub angular_accel_rad_s2: f64,
+    /// Shake: acceleration amplitude [m/s²].
+    #[serde(default)]
+    pub amplitude_m_s2: f64,
+    /// Shake: frequency [Hz].
+    #[serde(default)]
+    pub frequency_hz: f64,
+    /// Pull: the external force, ramped in over the first 10 % of the phase [N], along the
+    /// cylinder axis.
+    #[serde(default)]
+    pub force_n: f64,
+    /// Pull: the external twisting moment, ramped likewise [N·m].
+    #[serde(default)]
+    pub moment_nm: f64,
+}
+
+/// softgrip's settings for the scene; every field has the controller's default.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerSettings {
+    /// Safety factor.
+    pub safety: Option<f64>,
+    /// Least command [N].
+    pub n_min_n: Option<f64>,
+    /// Greatest command [N].
+    pub n_max_n: Option<f64>,
+    /// Rise rate [N/s].
+    pub rise_rate_n_per_s: Option<f64>,
+    /// Fall rate [N/s].
+    pub fall_rate_n_per_s: Option<f64>,
+    /// Stale timeout [s].
+    pub stale_timeout_s: Option<f64>,
+    /// Fault force [N].
+    pub fault_force_n: Option<f64>,
+    /// Sensor force range [N].
+    pub force_range_n: Option<f64>,
+    /// Sensor moment range [N·m].
+    pub moment_range_nm: Option<f64>,
+    /// The force of the `constant` baseline [N]; default the fault force.
+    pub constant_force_n: Option<f64>,
+}
+
+/// A scene file that could not be used.
+#[derive(Debug)]
+pub struct SceneError(pub String);
+
+impl std::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// The 1-based line where `key` is set in `[table]` (or at the top level for `""`), if it
+/// is written on a line of its own.
+pub fn line_of(text: &str, table: &str, key: &str) -> Option<usize> {
+    let mut current = String::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.trim();
+        if let Some(name) = line
+            .strip_prefix("[[")
+            .and_then(|l| l.strip_suffix("]]"))
+            .or_else(|| line.strip_prefix('[').and_then(|l| l.strip_suffix(']')))
+        {
+            current = name.trim().to_string();
+            continue;
+        }
+        let Some((k, _)) = line.split_once('=') else {
+            continue;
+        };
+        if current == table && k.trim() == key {
+            return Some(i + 1);
+        }
+    }
+    None
+}
+
+impl Scene {
+    /// Reads and checks a scene file. Errors name the file, the key and its line.
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+        let mut scene =
+            Self::parse(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+        if scene.name.is_empty() {
+            scene.name = path
+                .file_stem()
+                .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        }
+        Ok(scene)
+    }
+
+    /// Parses and checks scene text.
+    pub fn parse(text: &str) -> Result<Self, SceneError> {
+        let scene: Scene = toml::from_str(text).map_err(|e| {
+            // toml's message: "TOML parse error at line L, column C\n  |\nL | ...\n ... msg".
+            let msg = e.message().trim().to_string();
+            let line = e
+                .span()
+                .and_then(|s| text.get(..s.start))
+                .map(|before| before.matches('\n').count() + 1);
+            match line {
+                Some(l) => SceneError(format!("line {l}: {msg}")),
+                None => SceneError(msg),
+            }
+        })?;
+        scene.check(text)?;
+        Ok(scene)
+    }
+
+    fn check(&self, text: &str) -> Result<(), SceneError> {
+        let bad = |table: &str, key: &str, why: String| {
+            let at = line_of(text, table, key).map_or(String::new(), |l| format!("line {l}: "));
+            let full = if table.is_empty() {
+                key.to_string()
+            } else {
+                format!("{table}.{key}")
+            };
+            SceneError(format!("{at}{full}: {why}"))
+        };
+        let positive = |table: &str, key: &str, v: f64| {
+            if v > 0.0 && v.is_finite() {
+                Ok(())
+            } else {
+                Err(bad(table, key, format!("{v} must be a finite number > 0")))
+            }
+        };
+        positive("", "duration_s", self.duration_s)?;
+        positive("", "tick_hz", self.tick_hz)?;
+        if self.duration_s * self.tick_hz > 1e8 {
+            return Err(bad("", "duration_s", "more than 1e8 ticks".into()));
+        }
+        for name in &self.effects {
+            if !crate::sim::effects::NAMES.contains(&name.as_str()) {
+                return Err(bad(
+                    "",
+                    "effects",
+                    format!(
+                        "unknown effect \"{name}\", expected one of {}",
+                        crate::sim::effects::NAMES.join(", ")
+                    ),
+                ));
+            }
+        }
+        for name in self.effect.keys() {
+            if !crate::sim::effects::NAMES.contains(&name.as_str()) {
+                return Err(bad(
+                    &format!("effect.{name}"),
+                    "",
+                    format!("unknown effect \"{name}\""),
+                ));
+            }
+        }
+        if !matches!(self.finger.shape.as_str(), "rect" | "disc") {
+            return Err(bad(
+                "finger",
+                "shape",
+                format!("\"{}\" is not rect or disc", self.finger.shape),
+            ));
+        }
+        positive("finger", "mu", self.finger.mu)?;
+        positive("finger", "c", self.finger.c)?;
+        positive("finger", "half_length_m", self.finger.half_length_m)?;
+        positive("finger", "young_modulus_pa", self.finger.young_modulus_pa)?;
+        if self.finger.k.is_nan() || self.finger.k < 1.0 {
+            return Err(bad(
+                "finger",
+                "k",
+                format!("{} must be >= 1", self.finger.k),
+            ));
+        }
+        if !(0.0..=0.5).contains(&self.finger.gamma) {
+            return Err(bad(
+                "finger",
+                "gamma",
+                format!("{} must lie in [0, 1/2]", self.finger.gamma),
+            ));
+        }
+        if !(0.0..0.5).contains(&self.finger.poisson) {
+            return Err(bad(
+                "finger",
+                "poisson",
+                format!("{} must lie in [0, 1/2)", self.finger.poisson),
+            ));
+        }
+        positive("object", "mass_kg", self.object.mass_kg)?;
+        positive("object", "inertia_kg_m2", self.object.inertia_kg_m2)?;
+        if !self.object.com_offset_m.is_finite() {
+            return Err(bad("object", "com_offset_m", "must be finite".into()));
+        }
+        for p in &self.task {
+            if !matches!(
+                p.kind.as_str(),
+                "lift" | "hold" | "twist" | "shake" | "pull"
+            ) {
+                return Err(bad(
+                    "task",
+                    "kind",
+                    format!("\"{}\" is not lift, hold, twist, shake or pull", p.kind),
+                ));
+            }
+            let values = [
+                p.start_s,
+                p.end_s,
+                p.accel_m_s2,
+                p.angular_accel_rad_s2,
+                p.amplitude_m_s2,
+                p.frequency_hz,
+                p.force_n,
+                p.moment_nm,
+            ];
+            if values.iter().any(|v| !v.is_finite()) || p.end_s <= p.start_s {
+                return Err(bad(
+                    "task",
+                    "end_s",
+                    format!(
+                        "phase \"{}\" needs finite values and end_s > start_s",
+                        p.kind
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A number from `[effect.NAME]`, or `default` when absent. A present value of the
+    /// wrong type or out of `[lo, hi]` is an error naming the key.
+    pub fn effect_param(
+        &self,
+        text_hint: Option<&str>,
+        effect: &str,
+        key: &str,
+        default: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Result<f64, SceneError> {
+        let Some(v) = self.effect.get(effect).and_then(|t| t.get(key)) else {
+            return Ok(default);
+        };
+        let x = v
+            .as_float()
+            .or_else(|| v.as_integer().map(|i| i as f64))
+            .ok_or_else(|| SceneError(format!("effect.{effect}.{key}: {v} is not a number")))?;
+        if !(lo..=hi).contains(&x) {
+            let at = text_hint
+                .and_then(|t| line_of(t, &format!("effect.{effect}"), key))
+                .map_or(String::new(), |l| format!("line {l}: "));
+            return Err(SceneError(format!(
+                "{at}effect.{effect}.{key}: {x} is out of range [{lo}, {hi}]"
+            )));
+        }
+        Ok(x)
+    }
+}

@@ -1,0 +1,49 @@
+//! The task: what the hand does with the object, as loads over time. Phases add up where
+//! they overlap. These are the scene's own loads, not effects: every scene has them.
+
+use crate::sim::effects::World;
+use crate::sim::scene::Scene;
+
+fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// The part of the object's weight the grasp carries at `t`: 0 before the first lift
+/// (the object rests on its support), rising smoothly over the first 20 % of that lift,
+/// then 1. Without a lift phase the grasp carries it all along.
+pub fn support_fraction(scene: &Scene, t_s: f64) -> f64 {
+    match scene.task.iter().find(|p| p.kind == "lift") {
+        Some(p) => smoothstep((t_s - p.start_s) / (0.2 * (p.end_s - p.start_s))),
+        None => 1.0,
+    }
+}
+
+/// Adds the task's loads at `w.t_s` to `w`: the inertial force of lifting and shaking
+/// (`m·a`, vertical), the inertial moment of twisting (`I·α`), and external pulls.
+pub fn apply(scene: &Scene, w: &mut World) {
+    let t = w.t_s;
+    for p in &scene.task {
+        if !(t >= p.start_s && t < p.end_s) {
+            continue;
+        }
+        let span = p.end_s - p.start_s;
+        let x = (t - p.start_s) / span;
+        let two_pi = std::f64::consts::TAU;
+        match p.kind.as_str() {
+            // Accelerate, then decelerate to rest: a = A·sin(2πx).
+            "lift" => w.force_n[1] += w.mass_kg * p.accel_m_s2 * (two_pi * x).sin(),
+            "twist" => w.moment_nm += w.inertia_kg_m2 * p.angular_accel_rad_s2 * (two_pi * x).sin(),
+            "shake" => {
+                w.force_n[1] +=
+                    w.mass_kg * p.amplitude_m_s2 * (two_pi * p.frequency_hz * (t - p.start_s)).sin()
+            }
+            "pull" => {
+                let ramp = smoothstep(x / 0.1);
+                w.force_n[0] += p.force_n * ramp;
+                w.moment_nm += p.moment_nm * ramp;
+            }
+            _ => {}
+        }
+    }
+}

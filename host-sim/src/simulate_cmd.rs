@@ -166,11 +166,23 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     report::write_summary_json(&args.out.join("summary.json"), &all)
         .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
     print!("{}", report::summary_table(&all));
+    println!();
     for r in &all {
         if r.controller.starts_with("softgrip") {
+            let shares: Vec<String> = r
+                .step_cost_share
+                .iter()
+                .map(|(k, v)| format!("{k} {:.0} %", 100.0 * v))
+                .collect();
             println!(
-                "{} / {}: real-time factor {:.1} (in-process link), {} ticks in {:.2} s",
-                r.scene, r.controller, r.real_time_factor, r.ticks, r.wall_s
+                "{} / {}: real-time factor {:.1} (in-process link), {} ticks in {:.2} s; \
+                 plant step cost: {}",
+                r.scene,
+                r.controller,
+                r.real_time_factor,
+                r.ticks,
+                r.wall_s,
+                shares.join(", ")
             );
         }
     }

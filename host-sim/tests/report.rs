@@ -298,13 +298,25 @@ fn surface_axes_follow_the_99th_percentile_and_stay_finite() {
     let l = surface_axis_limit(&[("a", &quiet)], &[]);
     assert!((1.2..1.5).contains(&l), "{l}");
 
-    // Loads up to 3: the axes reach past 3.
+    // Tangential loads spread evenly up to 3 (no torsion): the axes reach about 3.
     let mut big = samples(1000, 0.0);
-    for s in &mut big {
-        s.f_norm *= 3.0;
+    for (i, s) in big.iter_mut().enumerate() {
+        s.f_norm = 3.0 * i as f64 / 999.0;
+        s.m_norm = 0.0;
+        s.pitch = PITCH;
     }
     let l = surface_axis_limit(&[("a", &big)], &[]);
-    assert!((3.0..3.3).contains(&l), "{l}");
+    assert!((2.9..3.2).contains(&l), "{l}");
+
+    // Pure torsion: y is |m_norm| / pitch, so m_norm = 1.5 at pitch 0.5 is y = 3.
+    let mut twist = samples(100, 0.0);
+    for s in &mut twist {
+        s.f_norm = 0.0;
+        s.m_norm = -1.5;
+        s.pitch = 0.5;
+    }
+    let l = surface_axis_limit(&[("a", &twist)], &[]);
+    assert!((l - 3.15).abs() < 1e-9, "{l}");
 
     // Five wild outliers among 1000 samples (< 1 %) do not stretch the axes.
     let mut wild = samples(1000, 0.0);

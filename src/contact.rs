@@ -54,7 +54,7 @@ impl<T: Real> ContactSize<T> {
         if self.gamma == T::zero() {
             return self.c_m_per_n_gamma;
         }
-        self.c_m_per_n_gamma * n.powf(self.gamma)
+        self.c_m_per_n_gamma * n.libm_powf(self.gamma)
     }
 
     /// The normal force [N] at which the half-width reaches `half_width_m` (the inverse
@@ -64,6 +64,6 @@ impl<T: Real> ContactSize<T> {
             return None;
         }
         let ratio = (half_width_m / self.c_m_per_n_gamma).max(T::zero());
-        Some(ratio.powf(T::one() / self.gamma))
+        Some(ratio.libm_powf(T::one() / self.gamma))
     }
 }

@@ -12,13 +12,16 @@
 //!   QEMU) or a host clock, to account for each tick's cost.
 //!
 //! The tick runs in f32 (the M4F's hardware precision) with the math backend `M`; the
-//! start-up precomputation also runs in f32, as it would on the target.
+//! start-up precomputation runs in `P` (f32 by default, f64 to trade start-up time for
+//! grid accuracy).
 
 use crate::controller::{Controller, Libm, Measurement, TickMath};
 use crate::protocol::{
     encode, CommandFrame, CostUnit, DefaultFrameDecoder, Reply, Request, SensorFrame, Stats,
     WireConfigError, MAX_FRAME_LEN,
 };
+use crate::real::Real;
+use core::marker::PhantomData;
 use embedded_hal::pwm::SetDutyCycle;
 
 /// Where the commanded normal force goes.
@@ -94,8 +97,11 @@ impl CostClock for NoClock {
 
 /// The device: controller, decoder and counters. See the module docs.
 #[derive(Debug)]
-pub struct Device<M = Libm> {
+pub struct Device<M = Libm, P = f32> {
     controller: Option<Controller<f32, M>>,
+    stack_probe: fn() -> u32,
+    shutdown: Option<u8>,
+    _precision: PhantomData<P>,
     decoder: DefaultFrameDecoder,
     frames_sent: u32,
     ticks: u32,
@@ -105,18 +111,25 @@ pub struct Device<M = Libm> {
     tx: [u8; MAX_FRAME_LEN],
 }
 
-impl<M: TickMath<f32>> Default for Device<M> {
+impl<M: TickMath<f32>, P: Real> Default for Device<M, P> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<M: TickMath<f32>> Device<M> {
+fn no_stack_probe() -> u32 {
+    0
+}
+
+impl<M: TickMath<f32>, P: Real> Device<M, P> {
     /// An unconfigured device: it answers sensor frames with [`Reply::NotConfigured`]
     /// until a configuration is accepted.
     pub fn new() -> Self {
         Self {
             controller: None,
+            stack_probe: no_stack_probe,
+            shutdown: None,
+            _precision: PhantomData,
             decoder: DefaultFrameDecoder::new(),
             frames_sent: 0,
             ticks: 0,
@@ -125,6 +138,18 @@ impl<M: TickMath<f32>> Device<M> {
             startup_cost: 0,
             tx: [0; MAX_FRAME_LEN],
         }
+    }
+
+    /// Reports the stack's high-water mark in [`Stats::stack_peak_bytes`] with `probe`
+    /// (the firmware paints its stack at start-up and scans it).
+    pub fn with_stack_probe(mut self, probe: fn() -> u32) -> Self {
+        self.stack_probe = probe;
+        self
+    }
+
+    /// The exit code of a [`Request::Shutdown`], once one has been answered.
+    pub fn shutdown_requested(&self) -> Option<u8> {
+        self.shutdown
     }
 
     /// The controller, once configured.
@@ -145,6 +170,7 @@ impl<M: TickMath<f32>> Device<M> {
             worst_tick_cost: self.worst_tick_cost,
             last_tick_cost: self.last_tick_cost,
             startup_cost: self.startup_cost,
+            stack_peak_bytes: (self.stack_probe)(),
             cost_unit: C::UNIT,
         }
     }
@@ -162,7 +188,7 @@ impl<M: TickMath<f32>> Device<M> {
             Request::Hello { .. } => Reply::hello(),
             Request::Configure(cfg) => {
                 let start = clock.now();
-                let built = Controller::<f32, M>::new(cfg);
+                let built = Controller::<f32, M>::new_precomputed_in::<P>(cfg);
                 let cost = clock.now().wrapping_sub(start);
                 match built {
                     Ok(ctl) => {
@@ -181,6 +207,10 @@ impl<M: TickMath<f32>> Device<M> {
                 }
             }
             Request::Sensor(frame) => self.tick(frame, actuator, clock),
+            Request::Shutdown { code } => {
+                self.shutdown = Some(code);
+                Reply::ShuttingDown { code }
+            }
             Request::GetStats => Reply::Stats(self.stats::<C>()),
             Request::ResetStats => {
                 self.decoder.reset_counters();
@@ -229,6 +259,7 @@ impl<M: TickMath<f32>> Device<M> {
             utilisation: out.utilisation,
             status: out.status,
             fault_active: out.fault_active,
+            tick_cost: cost,
         })
     }
 
@@ -260,11 +291,16 @@ impl<M: TickMath<f32>> Device<M> {
                 io.flush()?;
                 self.frames_sent = self.frames_sent.saturating_add(1);
             }
+            if self.shutdown.is_some() {
+                // Whatever follows a shutdown is not read.
+                break;
+            }
         }
         Ok(n)
     }
 
-    /// Serves `io` until the stream ends (a read of 0 bytes) or fails.
+    /// Serves `io` until the stream ends (a read of 0 bytes), fails, or a
+    /// [`Request::Shutdown`] has been answered.
     pub fn run<IO, A, C>(
         &mut self,
         io: &mut IO,
@@ -276,7 +312,7 @@ impl<M: TickMath<f32>> Device<M> {
         A: ForceActuator,
         C: CostClock,
     {
-        while self.poll(io, actuator, clock)? > 0 {}
+        while self.poll(io, actuator, clock)? > 0 && self.shutdown.is_none() {}
         Ok(())
     }
 }

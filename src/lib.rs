@@ -1,5 +1,6 @@
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(test), no_std)]
+#![forbid(unsafe_code)]
 // `!(x > 0)` is how the core rejects NaN together with non-positive values, on purpose.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 #![cfg_attr(

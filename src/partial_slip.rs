@@ -22,7 +22,7 @@ fn clamp_ratio<T: Real>(load_ratio: T) -> T {
 /// ratios within 1e-15 of 1 (the cube root is taken of `1 − ratio`, computed exactly).
 pub fn stick_radius<T: Real>(half_width: T, load_ratio: T) -> T {
     let r = clamp_ratio(load_ratio);
-    half_width * (T::one() - r).cbrt()
+    half_width * (T::one() - r).libm_cbrt()
 }
 
 /// Elastic properties of the fingertip for the deflection formula.
@@ -72,7 +72,7 @@ pub fn deflection_m<T: Real>(
     let bracket = if r == T::one() {
         T::one()
     } else {
-        -((T::of(2.0 / 3.0)) * (-r).ln_1p()).exp_m1()
+        -((T::of(2.0 / 3.0)) * (-r).libm_ln_1p()).libm_exp_m1()
     };
     let scale = T::of(3.0) * friction_force_n / (T::of(16.0) * half_width_m)
         * (T::of(2.0) - elasticity.poisson)

@@ -75,7 +75,7 @@ impl<T: Real> KProfile<T> {
         let c = c.max(T::zero()).min(T::one());
         match self.kind {
             KKind::One => c,
-            KKind::Two => (c * (T::one() + s)).sqrt(),
+            KKind::Two => (c * (T::one() + s)).libm_sqrt(),
             KKind::Uniform => {
                 if c > T::zero() {
                     T::one()
@@ -90,11 +90,11 @@ impl<T: Real> KProfile<T> {
                 let half = T::of(0.5);
                 // 1 − s^k, from whichever of s and c is known more accurately.
                 let omega = if s <= half {
-                    T::one() - (self.k * s.ln()).exp()
+                    T::one() - (self.k * s.libm_ln()).libm_exp()
                 } else {
-                    -(self.k * (-c).ln_1p()).exp_m1()
+                    -(self.k * (-c).libm_ln_1p()).libm_exp_m1()
                 };
-                (omega.ln() * self.inv_k).exp()
+                (omega.libm_ln() * self.inv_k).libm_exp()
             }
         }
     }
@@ -187,8 +187,8 @@ pub fn disc_pa(profile: &KProfile<f64>, n: f64, a: f64, peak: (f64, f64), x: f64
 pub fn ray_to_circle<T: Real>(px: T, py: T, ex: T, ey: T) -> T {
     let b = px * ex + py * ey;
     let r2 = px * px + py * py;
-    let inside = ((T::one() - r2.sqrt()) * (T::one() + r2.sqrt())).max(T::zero());
-    let root = (b * b + inside).sqrt();
+    let inside = ((T::one() - r2.libm_sqrt()) * (T::one() + r2.libm_sqrt())).max(T::zero());
+    let root = (b * b + inside).libm_sqrt();
     if b > T::zero() {
         inside / (b + root)
     } else {

@@ -2,9 +2,15 @@
 //!
 //! Everything numeric in softgrip is generic over [`Real`], implemented for `f64` (the
 //! default for precomputation: about 1e-12 absolute on the limit surface) and `f32` (what the
-//! Cortex-M4F has in hardware: about 1e-6). The elementary functions come from
-//! `num-traits` routed through `libm`, on the host and on the target alike, so a host test
-//! exercises the very routines the firmware runs.
+//! Cortex-M4F has in hardware: about 1e-6).
+//!
+//! The elementary functions are [`Real`]'s own `libm_*` methods, which call the `libm`
+//! crate directly, on the host and on the target alike: a host computation then rounds
+//! exactly as the firmware does, so the firmware in QEMU and the in-process link give
+//! bit-identical results. `num-traits`' `Float::ln` and friends must not be used for this:
+//! when any crate in a host build enables `num-traits/std` (plotting libraries do), they
+//! switch to the C library's routines, which round differently in the last place.
+//! `clippy.toml` forbids them.
 
 use num_traits::{Float, FloatConst};
 
@@ -20,9 +26,82 @@ pub trait Real:
     fn of_usize(n: usize) -> Self {
         Self::of(n as f64)
     }
+    /// Natural logarithm (libm).
+    fn libm_ln(self) -> Self;
+    /// `e^x` (libm).
+    fn libm_exp(self) -> Self;
+    /// `x^y` (libm).
+    fn libm_powf(self, y: Self) -> Self;
+    /// Square root (libm; correctly rounded).
+    fn libm_sqrt(self) -> Self;
+    /// `sqrt(x² + y²)` without overflow (libm).
+    fn libm_hypot(self, y: Self) -> Self;
+    /// Four-quadrant arctangent of `self/x` (libm).
+    fn libm_atan2(self, x: Self) -> Self;
+    /// Cube root (libm).
+    fn libm_cbrt(self) -> Self;
+    /// `e^x − 1` (libm).
+    fn libm_exp_m1(self) -> Self;
+    /// `ln(1 + x)` (libm).
+    fn libm_ln_1p(self) -> Self;
+    /// Hyperbolic tangent (libm).
+    fn libm_tanh(self) -> Self;
+    /// `(sin x, cos x)` (libm).
+    fn libm_sin_cos(self) -> (Self, Self);
+}
+
+macro_rules! libm_methods {
+    ($ln:ident, $exp:ident, $pow:ident, $sqrt:ident, $hypot:ident, $atan2:ident, $cbrt:ident,
+     $expm1:ident, $log1p:ident, $tanh:ident, $sincos:ident) => {
+        #[inline(always)]
+        fn libm_ln(self) -> Self {
+            libm::$ln(self)
+        }
+        #[inline(always)]
+        fn libm_exp(self) -> Self {
+            libm::$exp(self)
+        }
+        #[inline(always)]
+        fn libm_powf(self, y: Self) -> Self {
+            libm::$pow(self, y)
+        }
+        #[inline(always)]
+        fn libm_sqrt(self) -> Self {
+            libm::$sqrt(self)
+        }
+        #[inline(always)]
+        fn libm_hypot(self, y: Self) -> Self {
+            libm::$hypot(self, y)
+        }
+        #[inline(always)]
+        fn libm_atan2(self, x: Self) -> Self {
+            libm::$atan2(self, x)
+        }
+        #[inline(always)]
+        fn libm_cbrt(self) -> Self {
+            libm::$cbrt(self)
+        }
+        #[inline(always)]
+        fn libm_exp_m1(self) -> Self {
+            libm::$expm1(self)
+        }
+        #[inline(always)]
+        fn libm_ln_1p(self) -> Self {
+            libm::$log1p(self)
+        }
+        #[inline(always)]
+        fn libm_tanh(self) -> Self {
+            libm::$tanh(self)
+        }
+        #[inline(always)]
+        fn libm_sin_cos(self) -> (Self, Self) {
+            libm::$sincos(self)
+        }
+    };
 }
 
 impl Real for f64 {
+    libm_methods!(log, exp, pow, sqrt, hypot, atan2, cbrt, expm1, log1p, tanh, sincos);
     #[inline(always)]
     fn of(x: f64) -> Self {
         x
@@ -34,6 +113,7 @@ impl Real for f64 {
 }
 
 impl Real for f32 {
+    libm_methods!(logf, expf, powf, sqrtf, hypotf, atan2f, cbrtf, expm1f, log1pf, tanhf, sincosf);
     #[inline(always)]
     fn of(x: f64) -> Self {
         x as f32

@@ -88,7 +88,7 @@ impl<T: Real> SkewLaw<T> {
     /// `Δy/a` at the normalised centre-of-rotation distance `d = d_c/a ≥ 0` (Eq. 17). In
     /// `[0, Δ/a]`; `d = ∞` gives `Δ/a`.
     pub fn delta_y(&self, d: T) -> T {
-        self.delta_over_a * (self.alpha * d.max(T::zero())).tanh()
+        self.delta_over_a * (self.alpha * d.max(T::zero())).libm_tanh()
     }
 
     /// `Δx/a` on the locus for a given `Δy/a` (Eq. 16): zero at both ends of the path.
@@ -99,7 +99,7 @@ impl<T: Real> SkewLaw<T> {
         }
         // (Δ/2)² − (Δy − Δ/2)² = Δy (Δ − Δy), free of cancellation.
         let under = (delta_y * (self.delta_over_a - delta_y)).max(T::zero());
-        self.locus_h_over_a / half * under.sqrt()
+        self.locus_h_over_a / half * under.libm_sqrt()
     }
 
     /// The peak `(Δx/a, Δy/a)` at `d = d_c/a`.

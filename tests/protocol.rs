@@ -173,6 +173,7 @@ fn stats_sample() -> Stats {
         worst_tick_cost: 12_345,
         last_tick_cost: 4_321,
         startup_cost: 7_654_321,
+        stack_peak_bytes: 3_072,
         cost_unit: CostUnit::Cycles,
     }
 }
@@ -199,6 +200,8 @@ fn all_requests() -> Vec<Request> {
         Request::Sensor(sensor(42)),
         Request::GetStats,
         Request::ResetStats,
+        Request::Shutdown { code: 0 },
+        Request::Shutdown { code: 3 },
     ]
 }
 
@@ -215,6 +218,7 @@ fn all_replies() -> Vec<Reply> {
             utilisation: 0.77,
             status: Status::Ok,
             fault_active: false,
+            tick_cost: 12_345,
         }),
         Reply::Command(CommandFrame {
             seq: u32::MAX,
@@ -223,9 +227,12 @@ fn all_replies() -> Vec<Reply> {
             utilisation: f32::INFINITY,
             status: Status::StaleInput,
             fault_active: true,
+            tick_cost: 0,
         }),
         Reply::Stats(stats_sample()),
         Reply::NotConfigured { seq: 5 },
+        Reply::ShuttingDown { code: 0 },
+        Reply::ShuttingDown { code: 3 },
     ]
 }
 
@@ -327,6 +334,7 @@ fn largest_requests() -> Vec<Request> {
         }),
         Request::GetStats,
         Request::ResetStats,
+        Request::Shutdown { code: u8::MAX },
     ]
 }
 
@@ -349,6 +357,7 @@ fn largest_replies() -> Vec<Reply> {
             utilisation: f32::MAX,
             status: Status::StaleInput,
             fault_active: true,
+            tick_cost: u32::MAX,
         }),
         Reply::Stats(Stats {
             frames_received: u32::MAX,
@@ -360,9 +369,11 @@ fn largest_replies() -> Vec<Reply> {
             worst_tick_cost: u32::MAX,
             last_tick_cost: u32::MAX,
             startup_cost: u32::MAX,
+            stack_peak_bytes: u32::MAX,
             cost_unit: CostUnit::Cycles,
         }),
         Reply::NotConfigured { seq: u32::MAX },
+        Reply::ShuttingDown { code: u8::MAX },
     ]
 }
 
@@ -979,6 +990,8 @@ fn encode_reports_small_buffers_without_panicking() {
 const SCHEMA_HISTORY: &[(u32, u32)] = &[
     // Protocol 1: the first release.
     (0x3fd0_aa18, 0x0827_bcdf),
+    // Protocol 2: tick_cost in CommandFrame, stack_peak_bytes in Stats, Shutdown/ShuttingDown.
+    (0xc3d4_8d21, 0x7281_1450),
 ];
 
 /// A fixed value of every variant, encoded: it moves whenever the encoding does.
@@ -1026,6 +1039,7 @@ fn golden_digest() -> u32 {
         Request::Sensor(sensor(7)),
         Request::GetStats,
         Request::ResetStats,
+        Request::Shutdown { code: 5 },
     ];
     let statuses = [
         Status::Ok,
@@ -1047,6 +1061,7 @@ fn golden_digest() -> u32 {
         Reply::Configured(Ok(())),
         Reply::Configured(Err(wire_error_sample())),
         Reply::NotConfigured { seq: 4 },
+        Reply::ShuttingDown { code: 6 },
     ];
     for (i, status) in statuses.into_iter().enumerate() {
         replies.push(Reply::Command(CommandFrame {
@@ -1056,6 +1071,7 @@ fn golden_digest() -> u32 {
             utilisation: 0.5,
             status,
             fault_active: i % 2 == 1,
+            tick_cost: 1_000 + 300 * i as u32,
         }));
     }
     for cost_unit in units {
@@ -1084,7 +1100,8 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             schema_key: _,
         }
         | Request::GetStats
-        | Request::ResetStats => {}
+        | Request::ResetStats
+        | Request::Shutdown { code: _ } => {}
         Request::Configure(ControllerConfig {
             mu: _,
             shape,
@@ -1137,7 +1154,8 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             max_frame_len: _,
         }
         | Reply::Configured(Ok(()))
-        | Reply::NotConfigured { seq: _ } => {}
+        | Reply::NotConfigured { seq: _ }
+        | Reply::ShuttingDown { code: _ } => {}
         Reply::Configured(Err(WireConfigError {
             param: _,
             message: _,
@@ -1149,6 +1167,7 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             utilisation: _,
             status,
             fault_active: _,
+            tick_cost: _,
         }) => match status {
             Status::Ok | Status::Saturated | Status::SensorFault | Status::StaleInput => {}
         },
@@ -1162,6 +1181,7 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             worst_tick_cost: _,
             last_tick_cost: _,
             startup_cost: _,
+            stack_peak_bytes: _,
             cost_unit,
         }) => match cost_unit {
             CostUnit::Nanoseconds | CostUnit::Instructions | CostUnit::Cycles => {}
@@ -1281,6 +1301,7 @@ fn arb_request() -> impl Strategy<Value = Request> {
         arb_sensor().prop_map(Request::Sensor),
         Just(Request::GetStats),
         Just(Request::ResetStats),
+        any::<u8>().prop_map(|code| Request::Shutdown { code }),
     ]
 }
 
@@ -1327,10 +1348,11 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
             f32_bits(),
             f32_bits(),
             status,
-            any::<bool>()
+            any::<bool>(),
+            any::<u32>()
         )
             .prop_map(
-                |(seq, normal_force_n, n_slip_n, utilisation, status, fault_active)| {
+                |(seq, normal_force_n, n_slip_n, utilisation, status, fault_active, tick_cost)| {
                     Reply::Command(CommandFrame {
                         seq,
                         normal_force_n,
@@ -1338,10 +1360,11 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
                         utilisation,
                         status,
                         fault_active,
+                        tick_cost,
                     })
                 }
             ),
-        (any::<[u32; 9]>(), unit).prop_map(|(c, cost_unit)| Reply::Stats(Stats {
+        (any::<[u32; 10]>(), unit).prop_map(|(c, cost_unit)| Reply::Stats(Stats {
             frames_received: c[0],
             crc_errors: c[1],
             decode_errors: c[2],
@@ -1351,9 +1374,11 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
             worst_tick_cost: c[6],
             last_tick_cost: c[7],
             startup_cost: c[8],
+            stack_peak_bytes: c[9],
             cost_unit,
         })),
         any::<u32>().prop_map(|seq| Reply::NotConfigured { seq }),
+        any::<u8>().prop_map(|code| Reply::ShuttingDown { code }),
     ]
 }
 

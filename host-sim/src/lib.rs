@@ -7,6 +7,8 @@
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
 //!   by default the firmware loop on a thread of its own behind a pseudo-terminal.
 
+#![forbid(unsafe_code)]
+
 pub mod fls_cmd;
 pub mod link;
 pub mod required_force_cmd;

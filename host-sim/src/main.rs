@@ -3,6 +3,8 @@
 //! Exit codes: 0 on success, 2 on a bad argument (with a one-line reason naming it), 1 on
 //! any other failure.
 
+#![forbid(unsafe_code)]
+
 use clap::{Parser, Subcommand};
 use host_sim::{fls_cmd, required_force_cmd, simulate_cmd, CliError};
 use std::process::ExitCode;

@@ -1,13 +1,16 @@
 //! `host-sim simulate`: run grasp scenes against controllers and report.
 
-use crate::sim::controllers;
+use crate::link::qemu::default_paths;
+use crate::sim::controllers::{self, LinkKind};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::report;
-use crate::sim::run::{run, RunOutput};
+use crate::sim::run::{run_on, RunOutput};
 use crate::sim::scene::Scene;
 use crate::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `host-sim simulate`.
@@ -26,9 +29,16 @@ pub struct SimulateArgs {
     #[arg(long, default_value = "softgrip")]
     controller: String,
     /// The link to the device: `inprocess` (the firmware loop on a thread, over a
-    /// pseudo-terminal). `qemu` and a serial device path come with the firmware work.
+    /// pseudo-terminal) or `qemu` (the Cortex-M4F firmware in QEMU, over its USART).
     #[arg(long, default_value = "inprocess")]
     link: String,
+    /// The firmware ELF for `--link qemu` (default: what scripts/firmware-build.sh builds).
+    #[arg(long)]
+    firmware: Option<PathBuf>,
+    /// Where QEMU is unpacked for `--link qemu` (default: .firmware/qemu, from
+    /// scripts/firmware-setup.sh).
+    #[arg(long)]
+    qemu: Option<PathBuf>,
     /// Where to write summary.json, the time series and the plots.
     #[arg(long, default_value = "sim-out")]
     out: PathBuf,
@@ -124,13 +134,21 @@ fn write_scene_outputs(out: &Path, scene: &str, runs: &[RunOutput]) -> Result<()
 
 /// Runs `host-sim simulate`.
 pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
-    if args.link != "inprocess" {
-        return Err(CliError::Usage(format!(
-            "--link: \"{}\" is not available yet; only inprocess (the firmware loop over a \
-             pseudo-terminal) is",
-            args.link
-        )));
-    }
+    let link = match args.link.as_str() {
+        "inprocess" => LinkKind::InProcess,
+        "qemu" => {
+            let (qemu_dir, firmware) = default_paths();
+            LinkKind::Qemu {
+                qemu_dir: args.qemu.clone().unwrap_or(qemu_dir),
+                firmware: args.firmware.clone().unwrap_or(firmware),
+            }
+        }
+        other => {
+            return Err(CliError::Usage(format!(
+                "--link: \"{other}\" is not a link, expected inprocess or qemu"
+            )))
+        }
+    };
     let paths = scenes(args)?;
     let names = controllers(args)?;
     let mut loaded = Vec::new();
@@ -156,15 +174,29 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         let mut runs = Vec::new();
         for c in &names {
             bar.set_message(format!("{} / {c}", scene.name));
-            let out = run(scene, Some(text), c, Some(&bar)).map_err(CliError::Failed)?;
+            let out = run_on(scene, Some(text), c, &link, Some(&bar)).map_err(CliError::Failed)?;
             runs.push(out);
         }
         write_scene_outputs(&args.out, &scene.name, &runs)?;
         all.extend(runs.into_iter().map(|r| r.summary));
     }
     bar.finish_and_clear();
-    report::write_summary_json(&args.out.join("summary.json"), &all)
-        .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
+    let summary_path = args.out.join("summary.json");
+    match &link {
+        LinkKind::InProcess => report::write_summary_json(&summary_path, &all)
+            .map_err(|e| CliError::Failed(format!("--out: {e}")))?,
+        LinkKind::Qemu { firmware, .. } => {
+            let target = target_report(firmware, &all)?;
+            println!("{}", target.describe());
+            let text = serde_json::to_string_pretty(&serde_json::json!({
+                "runs": all,
+                "target": target,
+            }))
+            .map_err(|e| CliError::Failed(e.to_string()))?;
+            std::fs::write(&summary_path, text + "\n")
+                .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
+        }
+    }
     print!("{}", report::summary_table(&all));
     println!();
     for r in &all {
@@ -175,11 +207,12 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 .map(|(k, v)| format!("{k} {:.0} %", 100.0 * v))
                 .collect();
             println!(
-                "{} / {}: real-time factor {:.1} (in-process link), {} ticks in {:.2} s; \
+                "{} / {}: real-time factor {:.1} ({} link), {} ticks in {:.2} s; \
                  plant step cost: {}",
                 r.scene,
                 r.controller,
                 r.real_time_factor,
+                args.link,
                 r.ticks,
                 r.wall_s,
                 shares.join(", ")
@@ -192,4 +225,147 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     }
     println!("wrote {}", args.out.display());
     Ok(())
+}
+
+/// Minimum, median and maximum of a set of counts.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Spread {
+    /// Smallest.
+    pub min: f64,
+    /// Median.
+    pub median: f64,
+    /// Largest.
+    pub max: f64,
+}
+
+/// What the firmware costs on the emulated Cortex-M4F: `summary.json`'s `target`.
+#[derive(Debug, Clone, Serialize)]
+pub struct TargetReport {
+    /// The firmware ELF.
+    pub firmware: String,
+    /// Instructions of the start-up precomputation in the default mode (ellipse, or the
+    /// only mode run).
+    pub startup_instructions: f64,
+    /// Start-up instructions by mode.
+    pub startup_instructions_by_mode: BTreeMap<String, f64>,
+    /// Instructions per tick by mode, over all ticks of all scenes run (median of the
+    /// per-run medians, and the extremes).
+    pub tick_instructions: BTreeMap<String, Spread>,
+    /// Section sizes [bytes]: `.vector_table`, `.text`, `.rodata`, `.data`, `.bss`,
+    /// `.uninit`.
+    pub sections: BTreeMap<String, u64>,
+    /// Flash use [bytes]: vector table, code, read-only data and the initial values of
+    /// `.data`.
+    pub flash_bytes: u64,
+    /// Static RAM [bytes]: `.data`, `.bss`, `.uninit`.
+    pub static_ram_bytes: u64,
+    /// The deepest stack of any run [bytes], by stack painting.
+    pub stack_peak_bytes: f64,
+    /// Static RAM plus the stack peak [bytes].
+    pub ram_bytes: f64,
+}
+
+impl TargetReport {
+    fn describe(&self) -> String {
+        let ticks: Vec<String> = self
+            .tick_instructions
+            .iter()
+            .map(|(m, s)| format!("{m} {:.0}/{:.0}/{:.0}", s.min, s.median, s.max))
+            .collect();
+        format!(
+            "target (QEMU netduinoplus2, instructions): start-up {:.0}; tick min/median/max {}; \
+             flash {} B, RAM {} B static + {:.0} B stack peak",
+            self.startup_instructions,
+            ticks.join(", "),
+            self.flash_bytes,
+            self.static_ram_bytes,
+            self.stack_peak_bytes
+        )
+    }
+}
+
+fn mode_of(controller: &str) -> Option<&'static str> {
+    match controller {
+        "softgrip" | "softgrip-ellipse" => Some("ellipse"),
+        "softgrip-table" => Some("table"),
+        _ => None,
+    }
+}
+
+/// The section sizes of an ELF file.
+pub fn elf_sections(path: &Path) -> Result<BTreeMap<String, u64>, String> {
+    use object::{Object, ObjectSection};
+    let data = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let file = object::File::parse(&*data).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut out = BTreeMap::new();
+    for name in [
+        ".vector_table",
+        ".text",
+        ".rodata",
+        ".data",
+        ".bss",
+        ".uninit",
+    ] {
+        let size = file.section_by_name(name).map_or(0, |s| s.size());
+        out.insert(name.to_string(), size);
+    }
+    Ok(out)
+}
+
+fn target_report(firmware: &Path, runs: &[RunSummary]) -> Result<TargetReport, CliError> {
+    let sections = elf_sections(firmware).map_err(CliError::Failed)?;
+    let get = |k: &str| sections.get(k).copied().unwrap_or(0);
+    let flash = get(".vector_table") + get(".text") + get(".rodata") + get(".data");
+    let static_ram = get(".data") + get(".bss") + get(".uninit");
+    let mut startup = BTreeMap::new();
+    let mut ticks: BTreeMap<String, Vec<(f64, f64, f64)>> = BTreeMap::new();
+    let mut stack: f64 = 0.0;
+    for r in runs {
+        let Some(mode) = mode_of(&r.controller) else {
+            continue;
+        };
+        let m = &r.metrics;
+        if let Some(v) = m.get("device_startup_instructions") {
+            startup.entry(mode.to_string()).or_insert(*v);
+        }
+        if let (Some(a), Some(b), Some(c)) = (
+            m.get("device_tick_min_instructions"),
+            m.get("device_tick_median_instructions"),
+            m.get("device_tick_max_instructions"),
+        ) {
+            ticks
+                .entry(mode.to_string())
+                .or_default()
+                .push((*a, *b, *c));
+        }
+        stack = stack.max(m.get("device_stack_peak_bytes").copied().unwrap_or(0.0));
+    }
+    let tick_instructions = ticks
+        .into_iter()
+        .map(|(mode, v)| {
+            let mut medians: Vec<f64> = v.iter().map(|x| x.1).collect();
+            medians.sort_by(f64::total_cmp);
+            let spread = Spread {
+                min: v.iter().map(|x| x.0).fold(f64::INFINITY, f64::min),
+                median: medians[medians.len() / 2],
+                max: v.iter().map(|x| x.2).fold(0.0, f64::max),
+            };
+            (mode, spread)
+        })
+        .collect();
+    Ok(TargetReport {
+        firmware: firmware.display().to_string(),
+        startup_instructions: startup
+            .get("ellipse")
+            .or_else(|| startup.values().next())
+            .copied()
+            .unwrap_or(0.0),
+        startup_instructions_by_mode: startup,
+        tick_instructions,
+        sections,
+        flash_bytes: flash,
+        static_ram_bytes: static_ram,
+        stack_peak_bytes: stack,
+        ram_bytes: static_ram as f64 + stack,
+    })
 }

@@ -138,15 +138,15 @@ impl<T: Real> Capacity<T> {
             inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
             arm_linear_below: cfg.gamma > 0.0,
         };
-        let ln_n_min = P::of(cfg.n_min_n).ln();
-        let ln_step = (P::of(cfg.n_max_n).ln() - ln_n_min) / P::of_usize(nodes - 1);
+        let ln_n_min = P::of(cfg.n_min_n).libm_ln();
+        let ln_step = (P::of(cfg.n_max_n).libm_ln() - ln_n_min) / P::of_usize(nodes - 1);
         for j in 0..nodes {
             let n = if j + 1 == nodes {
                 P::of(cfg.n_max_n)
             } else if j == 0 {
                 P::of(cfg.n_min_n)
             } else {
-                (ln_n_min + ln_step * P::of_usize(j)).exp()
+                (ln_n_min + ln_step * P::of_usize(j)).libm_exp()
             };
             let a = contact.half_width_m(n);
             let pitch = if varying {
@@ -208,8 +208,8 @@ impl<T: Real> Capacity<T> {
         self.shapes = shapes;
         let l = P::of(cfg.half_length_m);
         // Aspect ratios fall as the force rises: the first node has the largest.
-        let ln_hi = (l / contact.half_width_m(P::of(cfg.n_min_n))).ln();
-        let ln_lo = (l / contact.half_width_m(P::of(cfg.n_max_n))).ln();
+        let ln_hi = (l / contact.half_width_m(P::of(cfg.n_min_n))).libm_ln();
+        let ln_lo = (l / contact.half_width_m(P::of(cfg.n_max_n))).libm_ln();
         let ln_step = if shapes > 1 {
             (ln_hi - ln_lo) / P::of_usize(shapes - 1)
         } else {
@@ -218,7 +218,7 @@ impl<T: Real> Capacity<T> {
         for j in 0..self.nodes {
             let pos = if shapes > 1 && ln_step > P::zero() {
                 let n = P::of(at(&self.force_n, j).to_f64());
-                ((l / contact.half_width_m(n)).ln() - ln_lo) / ln_step
+                ((l / contact.half_width_m(n)).libm_ln() - ln_lo) / ln_step
             } else {
                 P::zero()
             };
@@ -228,7 +228,7 @@ impl<T: Real> Capacity<T> {
         }
         for e in 0..shapes {
             let entry = if varying {
-                model.with_aspect((ln_lo + ln_step * P::of_usize(e)).exp().to_f64())?
+                model.with_aspect((ln_lo + ln_step * P::of_usize(e)).libm_exp().to_f64())?
             } else {
                 model.with_aspect((l / contact.half_width_m(P::of(cfg.n_min_n))).to_f64())?
             };

@@ -113,7 +113,7 @@ impl<T: Real, const A: usize, const S: usize> AspectGrid<T, A, S> {
                 weight: T::zero(),
             };
         }
-        let x = (aspect.ln() - self.ln_min) / self.ln_step;
+        let x = (aspect.libm_ln() - self.ln_min) / self.ln_step;
         if !(x > T::zero()) {
             return GridPosition {
                 index: 0,
@@ -151,7 +151,7 @@ impl<T: Real, const A: usize, const S: usize> AspectGrid<T, A, S> {
         if pos.weight == T::one() {
             return hi;
         }
-        (lo.ln() + (hi.ln() - lo.ln()) * pos.weight).exp()
+        (lo.libm_ln() + (hi.libm_ln() - lo.libm_ln()) * pos.weight).libm_exp()
     }
 
     /// Utilisation of the load `(f̃, m̃)` at `aspect`.

@@ -51,7 +51,7 @@ pub(crate) fn ring_kernels<T: Real>(r: T, d: T, abs_r_minus_d: T) -> [T; 2] {
     let eps = T::epsilon();
     for _ in 0..AGM_MAX_STEPS {
         let a_next = (a + b) * half;
-        let b_next = (a * b).sqrt();
+        let b_next = (a * b).libm_sqrt();
         q = q * q * m / (sixteen * a_next * a_next);
         sigma = sigma + pow2 * q;
         pow2 = pow2 + pow2;
@@ -116,16 +116,16 @@ pub(crate) fn skewed_point<T: Real>(
     let two_pi = T::of(2.0) * T::PI();
     // Vector from the peak to the centre of rotation, and the boundary point on that ray.
     let (cx, cy) = (d - px, -py);
-    let c_len = cx.hypot(cy);
+    let c_len = cx.libm_hypot(cy);
     let psi_c = if c_len > T::zero() {
         let (ex, ey) = (cx / c_len, cy / c_len);
         let rho = ray_to_circle(px, py, ex, ey);
-        (py + rho * ey).atan2(px + rho * ex)
+        (py + rho * ey).libm_atan2(px + rho * ex)
     } else {
         T::zero()
     };
     let per_angle = |psi: T| -> [T; 3] {
-        let (by, bx) = psi.sin_cos();
+        let (by, bx) = psi.libm_sin_cos();
         let (vx, vy) = (bx - px, by - py);
         let v2 = vx * vx + vy * vy;
         let jac_psi = one - (px * bx + py * by);
@@ -140,7 +140,7 @@ pub(crate) fn skewed_point<T: Real>(
         let kern = |s: T, comp: T, ds: T| -> [T; 3] {
             let g = profile.shape(s, comp);
             let (qx, qy) = (wx + ds * vx, wy + ds * vy);
-            let r = (qx * qx + qy * qy).sqrt();
+            let r = (qx * qx + qy * qy).libm_sqrt();
             if r <= T::zero() {
                 return [T::zero(); 3];
             }
@@ -188,5 +188,5 @@ pub(crate) fn skewed_point<T: Real>(
     let fx = sums[0] / norm;
     let fy = sums[1] / norm;
     let m = sums[2] / norm;
-    (fx.hypot(fy), m.abs())
+    (fx.libm_hypot(fy), m.abs())
 }

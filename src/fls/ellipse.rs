@@ -44,9 +44,9 @@ impl<T: Real> EllipseFit<T> {
             sq = sq + r * r;
         }
         Some(Self {
-            f_semi_axis: p.sqrt().recip(),
-            m_semi_axis: q.sqrt().recip(),
-            rms_residual: (sq / T::of_usize(points.len().max(1))).sqrt(),
+            f_semi_axis: p.libm_sqrt().recip(),
+            m_semi_axis: q.libm_sqrt().recip(),
+            rms_residual: (sq / T::of_usize(points.len().max(1))).libm_sqrt(),
         })
     }
 }
@@ -69,12 +69,12 @@ pub struct RadialGap<T> {
 
 /// Radius of the ellipse `f̃² + (m̃/pitch)² = 1` in the direction of `(f, m)`.
 pub fn ellipse_radius<T: Real>(pitch: T, f: T, m: T) -> T {
-    let r = f.hypot(m);
+    let r = f.libm_hypot(m);
     if r == T::zero() {
         return T::zero();
     }
     let (c, s) = (f / r, m / r);
-    (c * c + (s / pitch) * (s / pitch)).sqrt().recip()
+    (c * c + (s / pitch) * (s / pitch)).libm_sqrt().recip()
 }
 
 impl<T: Real> RadialGap<T> {
@@ -83,7 +83,7 @@ impl<T: Real> RadialGap<T> {
     /// (40 more points; the location is then known to about 1e-8 in `t`).
     pub fn find<const CAP: usize>(model: &FlsModel<T>, table: &FlsTable<T, CAP>) -> Self {
         let pitch = table.pitch();
-        let gap = |p: &FlsPoint<T>| ellipse_radius(pitch, p.f, p.m) - p.f.hypot(p.m);
+        let gap = |p: &FlsPoint<T>| ellipse_radius(pitch, p.f, p.m) - p.f.libm_hypot(p.m);
         let pts = table.points();
         let mut best = 0;
         let mut best_gap = T::neg_infinity();

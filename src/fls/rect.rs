@@ -26,18 +26,18 @@ pub(crate) fn row_kernels<T: Real>(lambda: T, d: T, y: T) -> [T; 3] {
     let y2 = y * y;
     let au1 = lambda + d;
     let u2 = lambda - d;
-    let r1 = (au1 * au1 + y2).sqrt();
-    let r2 = (u2 * u2 + y2).sqrt();
+    let r1 = (au1 * au1 + y2).libm_sqrt();
+    let r2 = (u2 * u2 + y2).libm_sqrt();
     let s = r1 + r2;
     let (y_d, y2_d) = if ay == T::zero() {
         (T::zero(), T::zero())
     } else {
         let big_d = if u2 >= T::zero() {
-            ((u2 + r2) / ay).ln() + ((au1 + r1) / ay).ln()
+            ((u2 + r2) / ay).libm_ln() + ((au1 + r1) / ay).libm_ln()
         } else {
             let four = T::of(4.0);
             let num = T::of(2.0) * lambda + four * lambda * d / s;
-            (num / (r2 - u2)).ln_1p()
+            (num / (r2 - u2)).libm_ln_1p()
         };
         (y * big_d, y2 * big_d)
     };
@@ -112,7 +112,7 @@ pub(crate) fn point<T: Real>(
     let f_x = c_k / two_pi_lambda * sums[0];
     let f_y = T::of(2.0) * c_k * d / pi * sums[1];
     let m = c_k / two_pi_lambda * sums[2];
-    (f_x.hypot(f_y), m.abs())
+    (f_x.libm_hypot(f_y), m.abs())
 }
 
 /// `g(y)` at the rule's nodes on `[0, 1]`, in the order `point` visits them.

@@ -157,7 +157,7 @@ impl<T: Real, const CAP: usize> FlsTable<T, CAP> {
     /// The surface's radius (distance from the origin) in the direction of `(f̃, m̃)`.
     pub fn radius(&self, f: T, m: T) -> T {
         let u = self.utilisation(f, m);
-        f.hypot(m) / u
+        f.libm_hypot(m) / u
     }
 }
 

@@ -15,7 +15,7 @@ use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
 /// encoding changing (the [`SCHEMA_KEY`] follows the encoding by itself).
-pub const PROTOCOL_VERSION: u16 = 1;
+pub const PROTOCOL_VERSION: u16 = 2;
 
 /// Every message, field and type on the wire, in order, plus the frame format. Its
 /// FNV-1a hash is [`SCHEMA_KEY`].
@@ -32,17 +32,18 @@ pub const SCHEMA: &str = "\
 softgrip-protocol;\
 frame=cobs(postcard(msg)+crc32_iscsi_le(postcard(msg)))+0x00;\
 Request{Hello{version:u16,schema_key:u32},Configure(ControllerConfig),Sensor(SensorFrame),\
-GetStats,ResetStats};\
+GetStats,ResetStats,Shutdown{code:u8}};\
 Reply{Hello{version:u16,schema_key:u32,max_frame_len:u16},\
 Configured(Result<(),WireConfigError>),Command(CommandFrame),Stats(Stats),\
-NotConfigured{seq:u32}};\
+NotConfigured{seq:u32},ShuttingDown{code:u8}};\
 SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment_nm:f32,\
 normal_force_n:f32};\
 CommandFrame{seq:u32,normal_force_n:f32,n_slip_n:f32,utilisation:f32,status:Status,\
-fault_active:bool};\
+fault_active:bool,tick_cost:u32};\
 Status{Ok,Saturated,SensorFault,StaleInput};\
 Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
-ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,cost_unit:CostUnit};\
+ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
+cost_unit:CostUnit};\
 CostUnit{Nanoseconds,Instructions,Cycles};\
 WireConfigError{param:String<32>,message:String<96>};\
 ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
@@ -106,6 +107,8 @@ pub struct CommandFrame {
     pub status: Status,
     /// Whether the controller is at (or moving to) its fault force.
     pub fault_active: bool,
+    /// What this tick cost, in the [`CostUnit`] of the device's [`Stats`].
+    pub tick_cost: u32,
 }
 
 /// The unit of the tick costs in [`Stats`]: whatever the device can measure.
@@ -146,6 +149,9 @@ pub struct Stats {
     /// Cost of the start-up precomputation (the last successful `Configure`), in
     /// `cost_unit`.
     pub startup_cost: u32,
+    /// The most stack the device has used since it started \[bytes\], measured by
+    /// painting the stack at start-up (0 where it is not measured, e.g. on the host).
+    pub stack_peak_bytes: u32,
     /// The unit of the costs.
     pub cost_unit: CostUnit,
 }
@@ -229,6 +235,12 @@ pub enum Request {
     GetStats,
     /// Zeroes the counters; the device answers [`Reply::Stats`] with the zeroed values.
     ResetStats,
+    /// Ends the session: the device answers [`Reply::ShuttingDown`] and stops (the
+    /// firmware exits the emulator with `code`; the host's device thread returns).
+    Shutdown {
+        /// The exit code the device should end with.
+        code: u8,
+    },
 }
 
 impl Request {
@@ -271,6 +283,11 @@ pub enum Reply {
     NotConfigured {
         /// The `seq` of that sensor frame.
         seq: u32,
+    },
+    /// Answers [`Request::Shutdown`]; the device stops after sending it.
+    ShuttingDown {
+        /// The exit code it will end with.
+        code: u8,
     },
 }
 

@@ -7,6 +7,7 @@
 //! serial device and the same decoder the firmware uses.
 
 pub mod pty;
+pub mod qemu;
 
 use softgrip::protocol::{
     encode, DecoderCounters, DefaultFrameDecoder, Reply, Request, MAX_FRAME_LEN, PROTOCOL_VERSION,
@@ -61,12 +62,15 @@ impl From<std::io::Error> for LinkError {
 }
 
 /// One request, one reply.
-pub trait Link {
+pub trait Link: std::fmt::Debug {
     /// Sends `request` and returns the device's reply.
     fn exchange(&mut self, request: &Request) -> Result<Reply, LinkError>;
 
     /// What the plant side's decoder has seen (replies received, corrupt, oversized).
     fn counters(&self) -> DecoderCounters;
+
+    /// Writes raw bytes onto the line, outside any exchange (fault injection).
+    fn inject(&mut self, bytes: &[u8]) -> Result<(), LinkError>;
 
     /// Checks the device's protocol version and schema, retrying while the device may
     /// not be listening yet (QEMU notices an opened pty only after up to a second).
@@ -118,6 +122,11 @@ impl<P: Read + Write> Framed<P> {
         }
     }
 
+    /// Changes the reply deadline.
+    pub fn set_timeout(&mut self, timeout: Duration) {
+        self.timeout = timeout;
+    }
+
     /// The port.
     pub fn port_mut(&mut self) -> &mut P {
         &mut self.port
@@ -150,6 +159,20 @@ impl<P: Read + Write> Framed<P> {
                 return Err(LinkError::Timeout);
             }
         }
+    }
+
+    /// Reads and discards whatever arrives within `quiet` (late answers to retried
+    /// requests), then clears the decoder's partial frame.
+    pub fn drain(&mut self, quiet: Duration) {
+        let deadline = Instant::now() + quiet;
+        let mut rx = [0u8; 256];
+        while Instant::now() < deadline {
+            match self.port.read(&mut rx) {
+                Ok(0) | Err(_) => std::thread::sleep(Duration::from_millis(10)),
+                Ok(_) => {}
+            }
+        }
+        self.decoder.clear();
     }
 
     /// The decoder's counters.

@@ -70,22 +70,20 @@ fn serve<M: TickMath<f32>>(mut port: TTYPort) {
     }
 }
 
-impl PtyLink {
-    /// Writes raw bytes onto the line, outside any exchange: for fault-injection tests.
-    pub fn inject(&mut self, bytes: &[u8]) -> Result<(), LinkError> {
-        use std::io::Write;
-        let framed = self.framed.as_mut().ok_or(LinkError::Timeout)?;
-        framed.port_mut().write_all(bytes)?;
-        Ok(())
-    }
-}
-
 impl Link for PtyLink {
     fn exchange(&mut self, request: &Request) -> Result<Reply, LinkError> {
         match self.framed.as_mut() {
             Some(framed) => framed.exchange(request),
             None => Err(LinkError::Timeout),
         }
+    }
+
+    /// Writes raw bytes onto the line, outside any exchange: for fault-injection tests.
+    fn inject(&mut self, bytes: &[u8]) -> Result<(), LinkError> {
+        use std::io::Write;
+        let framed = self.framed.as_mut().ok_or(LinkError::Timeout)?;
+        framed.port_mut().write_all(bytes)?;
+        Ok(())
     }
 
     fn counters(&self) -> DecoderCounters {

@@ -14,12 +14,15 @@
 //! fixed-patch model would be tuned at.
 
 use crate::link::pty::PtyLink;
+use crate::link::qemu::QemuLink;
 use crate::link::{Link, LinkError};
 use crate::sim::effects::LinkFate;
 use crate::sim::record::LinkSummary;
 use softgrip::controller::{ControllerConfig, Libm, Mode};
 use softgrip::protocol::{Reply, Request, SensorFrame};
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 /// Every controller name `--controller` accepts (besides `all`).
 pub const NAMES: [&str; 8] = [
@@ -44,6 +47,20 @@ pub const ALL: [&str; 7] = [
     "slip-servo",
 ];
 
+/// Where softgrip runs.
+#[derive(Debug, Clone)]
+pub enum LinkKind {
+    /// The device loop on a thread of its own, over a pseudo-terminal.
+    InProcess,
+    /// The firmware in QEMU, over its USART's pseudo-terminal.
+    Qemu {
+        /// Where QEMU is unpacked.
+        qemu_dir: PathBuf,
+        /// The firmware ELF.
+        firmware: PathBuf,
+    },
+}
+
 /// What a controller answers to one tick.
 #[derive(Debug, Clone, Copy)]
 pub struct Answer {
@@ -66,22 +83,31 @@ pub trait GripController {
     ) -> Result<Option<Answer>, LinkError>;
     /// The link's accounting at the end of a run.
     fn link_summary(&mut self) -> Result<LinkSummary, LinkError>;
+    /// What the device measured of itself (start-up and tick costs, stack), as run
+    /// metrics; empty for in-process baselines.
+    fn device_metrics(&mut self) -> Result<BTreeMap<String, f64>, LinkError> {
+        Ok(BTreeMap::new())
+    }
 }
 
-/// softgrip on the device loop, over the in-process pseudo-terminal link.
+/// softgrip on the device loop, over the in-process pseudo-terminal link or in QEMU.
 #[derive(Debug)]
 pub struct SoftgripLink {
     name: String,
-    link: PtyLink,
+    link: Box<dyn Link>,
     sent: u64,
     lost: u64,
     base: (u32, u32, u32, u32),
+    tick_costs: Vec<u32>,
 }
 
 impl SoftgripLink {
     /// Starts a device, configures it and records its counters' starting point.
-    pub fn start(name: &str, cfg: ControllerConfig) -> Result<Self, LinkError> {
-        let mut link = PtyLink::spawn::<Libm>()?;
+    pub fn start(name: &str, cfg: ControllerConfig, kind: &LinkKind) -> Result<Self, LinkError> {
+        let mut link: Box<dyn Link> = match kind {
+            LinkKind::InProcess => Box::new(PtyLink::spawn::<Libm>()?),
+            LinkKind::Qemu { qemu_dir, firmware } => Box::new(QemuLink::boot(qemu_dir, firmware)?),
+        };
         match link.exchange(&Request::Configure(cfg))? {
             Reply::Configured(Ok(())) => {}
             other => return Err(LinkError::Unexpected(Box::new(other))),
@@ -93,11 +119,12 @@ impl SoftgripLink {
             sent: 0,
             lost: 0,
             base,
+            tick_costs: Vec::new(),
         })
     }
 }
 
-fn stats(link: &mut PtyLink) -> Result<(u32, u32, u32, u32), LinkError> {
+fn stats(link: &mut Box<dyn Link>) -> Result<(u32, u32, u32, u32), LinkError> {
     match link.exchange(&Request::GetStats)? {
         Reply::Stats(s) => Ok((
             s.ticks,
@@ -131,6 +158,7 @@ impl GripController for SoftgripLink {
                     for _ in 0..4 {
                         match self.link.exchange(&Request::Sensor(*frame))? {
                             Reply::Command(c) if c.seq == frame.seq => {
+                                self.tick_costs.push(c.tick_cost);
                                 answer = Some(Answer {
                                     command_n: f64::from(c.normal_force_n),
                                     status: c.status.name(),
@@ -155,6 +183,35 @@ impl GripController for SoftgripLink {
             frames_lost: self.lost,
             commands_missing: 0,
         })
+    }
+
+    fn device_metrics(&mut self) -> Result<BTreeMap<String, f64>, LinkError> {
+        let s = match self.link.exchange(&Request::GetStats)? {
+            Reply::Stats(s) => s,
+            other => return Err(LinkError::Unexpected(Box::new(other))),
+        };
+        let unit = match s.cost_unit {
+            softgrip::protocol::CostUnit::Nanoseconds => "ns",
+            softgrip::protocol::CostUnit::Instructions => "instructions",
+            softgrip::protocol::CostUnit::Cycles => "cycles",
+        };
+        let mut m = BTreeMap::new();
+        m.insert(format!("device_startup_{unit}"), f64::from(s.startup_cost));
+        m.insert(
+            "device_stack_peak_bytes".to_string(),
+            f64::from(s.stack_peak_bytes),
+        );
+        let mut c = self.tick_costs.clone();
+        c.sort_unstable();
+        if let (Some(first), Some(last)) = (c.first(), c.last()) {
+            m.insert(format!("device_tick_min_{unit}"), f64::from(*first));
+            m.insert(
+                format!("device_tick_median_{unit}"),
+                f64::from(c[c.len() / 2]),
+            );
+            m.insert(format!("device_tick_max_{unit}"), f64::from(*last));
+        }
+        Ok(m)
     }
 }
 
@@ -329,13 +386,14 @@ pub fn build(
     name: &str,
     cfg: &ControllerConfig,
     constant_n: f64,
+    link: &LinkKind,
 ) -> Result<Box<dyn GripController>, String> {
     let softgrip = |mode: Option<Mode>| -> Result<Box<dyn GripController>, String> {
         let cfg = ControllerConfig {
             mode: mode.unwrap_or(cfg.mode),
             ..*cfg
         };
-        SoftgripLink::start(name, cfg)
+        SoftgripLink::start(name, cfg, link)
             .map(|c| Box::new(c) as Box<dyn GripController>)
             .map_err(|e| e.to_string())
     };

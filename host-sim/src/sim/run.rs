@@ -18,7 +18,7 @@
 //! sticking. Once the object has slid [`DROP_DISTANCE_M`] or turned [`DROP_ROTATION_RAD`]
 //! it is counted as dropped (metric `dropped_at_s`) and slip is no longer accumulated.
 
-use crate::sim::controllers;
+use crate::sim::controllers::{self, LinkKind};
 use crate::sim::effects::{LinkFate, Pipeline, World};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::scene::{Scene, SceneError};
@@ -93,6 +93,17 @@ pub fn run(
     controller: &str,
     progress: Option<&ProgressBar>,
 ) -> Result<RunOutput, String> {
+    run_on(scene, text, controller, &LinkKind::InProcess, progress)
+}
+
+/// Runs `scene` against `controller`, with softgrip on the link `link`.
+pub fn run_on(
+    scene: &Scene,
+    text: Option<&str>,
+    controller: &str,
+    link_kind: &LinkKind,
+    progress: Option<&ProgressBar>,
+) -> Result<RunOutput, String> {
     let wall = Instant::now();
     let cfg = controller_config(scene).map_err(|e| e.to_string())?;
     let constant_n = scene
@@ -108,7 +119,7 @@ pub fn run(
         cfg.n_max_n * 1.5,
     )
     .map_err(|e| e.to_string())?;
-    let mut ctl = controllers::build(controller, &cfg, constant_n)?;
+    let mut ctl = controllers::build(controller, &cfg, constant_n, link_kind)?;
 
     let dt = 1.0 / scene.tick_hz;
     let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
@@ -265,7 +276,7 @@ pub fn run(
     let mean_n = if ticks > 0 { sum_n / ticks as f64 } else { 0.0 };
     let wall_s = wall.elapsed().as_secs_f64();
     let duration_s = ticks as f64 * dt;
-    let mut metrics = BTreeMap::new();
+    let mut metrics = ctl.device_metrics().map_err(|e| e.to_string())?;
     metrics.insert("plant_step_s".to_string(), total.as_secs_f64());
     metrics.insert("controller_and_link_s".to_string(), control.as_secs_f64());
     if let Some(t) = dropped_at {

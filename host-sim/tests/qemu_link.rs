@@ -1,0 +1,95 @@
+//! The firmware in QEMU answers exactly as the controller does on the host, counts its
+//! instructions, and exits with the code it is asked for.
+//!
+//! Needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh`; without them the
+//! test says so and passes, unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it).
+
+use host_sim::link::qemu::{default_paths, QemuLink};
+use host_sim::link::Link;
+use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement, Mode};
+use softgrip::protocol::{CostUnit, Reply, Request, SensorFrame};
+
+fn available() -> Option<(std::path::PathBuf, std::path::PathBuf)> {
+    let (qemu, elf) = default_paths();
+    if qemu.join("usr/bin/qemu-system-arm").exists() && elf.exists() {
+        return Some((qemu, elf));
+    }
+    assert!(
+        std::env::var("SOFTGRIP_REQUIRE_QEMU").is_err(),
+        "SOFTGRIP_REQUIRE_QEMU is set but QEMU or the firmware is missing"
+    );
+    eprintln!("skipped: run scripts/firmware-setup.sh and scripts/firmware-build.sh");
+    None
+}
+
+#[test]
+fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
+    let Some((qemu, elf)) = available() else {
+        return;
+    };
+    let mut link = QemuLink::boot(&qemu, &elf).unwrap();
+    for mode in [Mode::Ellipse, Mode::Table] {
+        let cfg = ControllerConfig {
+            mode,
+            ..ControllerConfig::default()
+        };
+        assert_eq!(
+            link.exchange(&Request::Configure(cfg)).unwrap(),
+            Reply::Configured(Ok(()))
+        );
+        let mut direct = Controller::<f32, Libm>::new(cfg).unwrap();
+        let mut costs = Vec::new();
+        for i in 0..300u32 {
+            let p = i as f32 * 0.05;
+            let f = SensorFrame {
+                seq: i,
+                timestamp_us: 1000 * u64::from(i) + 1,
+                tangential_force_n: [3.0 * p.sin().abs(), 0.5 * p.cos()],
+                torsional_moment_nm: 0.01 * (0.7 * p).sin(),
+                normal_force_n: if i % 97 == 5 { f32::NAN } else { 3.0 + p.cos() },
+            };
+            let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
+                panic!("no command")
+            };
+            let want = direct.tick(&Measurement {
+                tangential_force_n: f.tangential_force_n,
+                torsional_moment_nm: f.torsional_moment_nm,
+                normal_force_n: f.normal_force_n,
+                timestamp_us: f.timestamp_us,
+            });
+            assert_eq!(
+                cmd.normal_force_n.to_bits(),
+                want.command_n.to_bits(),
+                "tick {i}"
+            );
+            assert_eq!(cmd.n_slip_n.to_bits(), want.n_slip_n.to_bits(), "tick {i}");
+            assert_eq!(
+                cmd.utilisation.to_bits(),
+                want.utilisation.to_bits(),
+                "tick {i}"
+            );
+            assert_eq!(cmd.status, want.status);
+            costs.push(cmd.tick_cost);
+        }
+        let Reply::Stats(s) = link.exchange(&Request::GetStats).unwrap() else {
+            panic!()
+        };
+        assert_eq!(s.cost_unit, CostUnit::Instructions);
+        assert!(s.startup_cost > 10_000, "{s:?}");
+        assert!(
+            s.stack_peak_bytes > 256 && s.stack_peak_bytes < 64 * 1024,
+            "{s:?}"
+        );
+        costs.sort_unstable();
+        eprintln!(
+            "{mode:?}: start-up {} instructions, tick min {} median {} max {}, stack peak {} B",
+            s.startup_cost,
+            costs[0],
+            costs[costs.len() / 2],
+            costs[costs.len() - 1],
+            s.stack_peak_bytes
+        );
+        assert!(costs[0] > 20);
+    }
+    assert_eq!(link.shutdown(7).unwrap(), 7);
+}

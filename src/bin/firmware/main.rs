@@ -1,0 +1,67 @@
+//! The Cortex-M4F firmware: the device loop of `softgrip::device` on an STM32F405 (QEMU's
+//! `netduinoplus2`), serving the protocol over USART1, one tick per sensor frame.
+//!
+//! - Start-up: TIM2 is set to count instructions (under `-icount shift=0`), the free stack
+//!   is painted, then the loop waits for a `Configure` request, whose precomputation is
+//!   counted as the start-up cost.
+//! - Each sensor frame: one tick, counted in instructions and returned in the command
+//!   frame (`tick_cost`) and the statistics.
+//! - `Shutdown`: the firmware exits the emulator through semihosting with the requested
+//!   code. A panic exits with code 101 (none is reachable by design).
+//!
+//! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
+//! software here). Variants (cargo features): `soft-sqrt` ticks with the `Libm` backend,
+//! `fast-math` with micromath's square root, `precompute-f64` precomputes in f64. Build
+//! with `scripts/firmware-build.sh`.
+
+#![no_std]
+#![no_main]
+// `core::intrinsics::sqrtf32` for the FPU square root (see `fpu_sqrt`).
+#![allow(internal_features)]
+#![feature(core_intrinsics)]
+
+mod exit;
+#[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
+mod fpu_sqrt;
+mod stack;
+mod tim2;
+mod usart;
+
+use cortex_m_rt::entry;
+use softgrip::device::{Device, NoActuator};
+
+#[cfg(feature = "fast-math")]
+type Math = softgrip::controller::Micromath;
+#[cfg(all(feature = "soft-sqrt", not(feature = "fast-math")))]
+type Math = softgrip::controller::Libm;
+#[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
+type Math = fpu_sqrt::FpuSqrt;
+
+#[cfg(feature = "precompute-f64")]
+type Precompute = f64;
+#[cfg(not(feature = "precompute-f64"))]
+type Precompute = f32;
+
+#[entry]
+fn main() -> ! {
+    stack::paint();
+    let mut clock = tim2::InstructionCounter::start();
+    let mut serial = usart::Usart1::init();
+    let mut device = Device::<Math, Precompute>::new().with_stack_probe(stack::peak_bytes);
+    let code = loop {
+        match device.poll(&mut serial, &mut NoActuator, &mut clock) {
+            Ok(_) => {}
+            Err(never) => match never {},
+        }
+        if let Some(code) = device.shutdown_requested() {
+            break code;
+        }
+    };
+    usart::Usart1::drain();
+    exit::exit(code)
+}
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    exit::exit(101)
+}

@@ -39,7 +39,7 @@ for v in "${variants[@]}"; do
         cp "$dir/thumbv7em-none-eabihf/firmware/libsoftgrip.rlib" "$out/"
         echo "$out/libsoftgrip.rlib"
     else
-        cp "$dir/thumbv7em-none-eabihf/firmware/firmware" "$out/firmware"
-        echo "$out/firmware"
+        cp "$dir/thumbv7em-none-eabihf/firmware/firmware" "$out/softgrip-firmware.elf"
+        echo "$out/softgrip-firmware.elf"
     fi
 done

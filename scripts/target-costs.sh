@@ -15,7 +15,7 @@ for v in "${variants[@]}"; do
     out="$(mktemp -d)"
     "$root/target/release/host-sim" simulate --all --scenes "$root/host-sim/scenes" \
         --controller softgrip,softgrip-table --link qemu \
-        --firmware "$root/target/firmware/$v/firmware" --out "$out" >/dev/null
+        --firmware "$root/target/firmware/$v/softgrip-firmware.elf" --out "$out" >/dev/null
     python3 - "$v" "$out/summary.json" <<'PY'
 import json, sys
 v, path = sys.argv[1], sys.argv[2]

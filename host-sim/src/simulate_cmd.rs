@@ -244,9 +244,9 @@ pub struct TargetReport {
     /// The firmware ELF.
     pub firmware: String,
     /// Instructions of the start-up precomputation in the default mode (ellipse, or the
-    /// only mode run).
+    /// only mode run), the most over the scenes run (each scene configures its finger).
     pub startup_instructions: f64,
-    /// Start-up instructions by mode.
+    /// Start-up instructions by mode (the most over the scenes).
     pub startup_instructions_by_mode: BTreeMap<String, f64>,
     /// Instructions per tick by mode, over all ticks of all scenes run (median of the
     /// per-run medians, and the extremes).
@@ -326,7 +326,8 @@ fn target_report(firmware: &Path, runs: &[RunSummary]) -> Result<TargetReport, C
         };
         let m = &r.metrics;
         if let Some(v) = m.get("device_startup_instructions") {
-            startup.entry(mode.to_string()).or_insert(*v);
+            let e = startup.entry(mode.to_string()).or_insert(0.0);
+            *e = f64::max(*e, *v);
         }
         if let (Some(a), Some(b), Some(c)) = (
             m.get("device_tick_min_instructions"),

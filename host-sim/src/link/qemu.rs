@@ -16,7 +16,7 @@ pub fn default_paths() -> (PathBuf, PathBuf) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     (
         root.join(".firmware/qemu"),
-        root.join("target/firmware/default/firmware"),
+        root.join("target/firmware/default/softgrip-firmware.elf"),
     )
 }
 

@@ -18,7 +18,10 @@
 #![no_main]
 // `core::intrinsics::sqrtf32` for the FPU square root (see `fpu_sqrt`).
 #![allow(internal_features)]
-#![feature(core_intrinsics)]
+#![cfg_attr(
+    not(any(feature = "fast-math", feature = "soft-sqrt")),
+    feature(core_intrinsics)
+)]
 
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]

@@ -1,5 +1,6 @@
 //! The per-tick slip-prevention controller (MODEL.md, "The slip-prevention rule").
 
+pub mod blob;
 mod capacity;
 mod config;
 mod math;
@@ -7,10 +8,10 @@ mod status;
 mod tick;
 
 pub use capacity::{
-    Capacity, Solution, DIRECTIONS, MAX_ASPECTS, MAX_FORCE_NODES, MAX_ILLINOIS_ITERATIONS,
-    MAX_TABLE_SAMPLES, UTILISATION_MAX,
+    Capacity, Solution, TableError, Tables, DIRECTIONS, MAX_ASPECTS, MAX_FORCE_NODES,
+    MAX_ILLINOIS_ITERATIONS, MAX_TABLE_SAMPLES, UTILISATION_MAX,
 };
 pub use config::{ControllerConfig, FingerShape, Mode, SkewParams};
 pub use math::{Libm, Micromath, TickMath};
 pub use status::Status;
-pub use tick::{Controller, Measurement, TickOutput};
+pub use tick::{Controller, FromTablesError, Measurement, TickOutput};

@@ -1,12 +1,32 @@
 //! The controller: validated once, then one total function per tick.
 
-use crate::controller::capacity::{Capacity, Solution};
+use crate::controller::capacity::{Capacity, Solution, TableError, Tables};
 use crate::controller::config::ControllerConfig;
 use crate::controller::math::{Libm, TickMath};
 use crate::controller::status::Status;
 use crate::error::ConfigError;
 use crate::real::Real;
 use core::marker::PhantomData;
+
+/// Why [`Controller::from_tables`] refused.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FromTablesError {
+    /// The configuration itself is invalid.
+    Config(ConfigError),
+    /// The tables do not fit the configuration.
+    Tables(TableError),
+}
+
+impl core::fmt::Display for FromTablesError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FromTablesError::Config(e) => e.fmt(f),
+            FromTablesError::Tables(e) => e.fmt(f),
+        }
+    }
+}
+
+impl core::error::Error for FromTablesError {}
 
 /// One sensor reading. Any value is accepted; the tick decides what is usable.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -100,8 +120,26 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     pub fn new_precomputed_in<P: Real>(config: ControllerConfig) -> Result<Self, ConfigError> {
         config.validate()?;
         let capacity = Capacity::build::<P>(&config)?;
+        Ok(Self::assemble(config, capacity))
+    }
+
+    /// A controller from exported tables ([`Capacity::tables`], `host-sim tables`): no
+    /// precomputation at all. The configuration is validated as by [`Controller::new`],
+    /// the tables against it (see [`Capacity::from_tables`]).
+    pub fn from_tables(
+        config: ControllerConfig,
+        tables: &Tables<'_, T>,
+    ) -> Result<Self, FromTablesError> {
+        config.validate().map_err(FromTablesError::Config)?;
+        let capacity = Capacity::from_tables(&config, tables).map_err(FromTablesError::Tables)?;
+        crate::controller::capacity::check_range(&config, &capacity)
+            .map_err(FromTablesError::Config)?;
+        Ok(Self::assemble(config, capacity))
+    }
+
+    fn assemble(config: ControllerConfig, capacity: Capacity<T>) -> Self {
         let ticks = libm::ceil(config.stale_timeout_s / config.tick_period_s - 1e-9);
-        Ok(Self {
+        Self {
             inv_mu: T::of(1.0 / config.mu),
             safety: T::of(config.safety),
             n_min: T::of(config.n_min_n),
@@ -124,7 +162,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             capacity,
             config,
             _math: PhantomData,
-        })
+        }
     }
 
     /// The configuration it was built from.

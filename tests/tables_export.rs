@@ -53,7 +53,7 @@ fn same_ticks(a: &mut Controller<f32>, b: &mut Controller<f32>) {
 #[test]
 fn tables_and_blobs_give_bit_identical_controllers() {
     for cfg in configs() {
-        let mut computed = Controller::<f32>::new(cfg).unwrap();
+        let computed = Controller::<f32>::new(cfg).unwrap();
         let tables = computed.capacity().tables();
         let mut imported = Controller::<f32>::from_tables(cfg, &tables).unwrap();
         let mut buf = [0u8; BLOB_MAX_LEN];

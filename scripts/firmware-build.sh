@@ -4,11 +4,14 @@
 #
 # Usage: scripts/firmware-build.sh [VARIANT ...]
 #   VARIANT: default (FPU sqrt in the tick, f32 precomputation), soft-sqrt (libm's
-#   software sqrt), fast-math (micromath's sqrt), precompute-f64, defmt
+#   software sqrt), fast-math (micromath's sqrt), precompute-f64, prebuilt-tables (the
+#   default finger's table-mode tables, made by host-sim, linked in), defmt
 #   (the defmt build is compiled and linked only to show it builds; it has no logger).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 lld="$(rustc --print sysroot)/lib/rustlib/x86_64-unknown-linux-gnu/bin/rust-lld"
+host_path="$PATH"
+host_rustc="$(command -v rustc)"
 export PATH="/usr/bin:$PATH" RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1
 export CARGO_TARGET_THUMBV7EM_NONE_EABIHF_LINKER="$lld"
 export CARGO_TARGET_THUMBV7EM_NONE_EABIHF_RUSTFLAGS="-C link-arg=-Tlink.x"
@@ -19,6 +22,13 @@ for v in "${variants[@]}"; do
         default) features="firmware" ;;
         fast-math) features="firmware,fast-math" ;;
         soft-sqrt) features="firmware,soft-sqrt" ;;
+        prebuilt-tables)
+            features="firmware,prebuilt-tables"
+            # Host tools with rustup's toolchain, before PATH puts Debian's first.
+            (cd "$root" && PATH="$host_path" RUSTC="$host_rustc" cargo run -q --release -p host-sim -- \
+                tables --format rust --mode table --out "$root/target/firmware/tables" >&2)
+            export SOFTGRIP_TABLES_RS="$root/target/firmware/tables/softgrip_tables.rs"
+            ;;
         precompute-f64) features="firmware,precompute-f64" ;;
         defmt) features="defmt" ;;
         *) echo "unknown variant $v" >&2; exit 2 ;;

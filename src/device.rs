@@ -11,11 +11,13 @@
 //! - the cost clock: a [`CostClock`] that reads a cycle or instruction counter (TIM2 under
 //!   QEMU) or a host clock, to account for each tick's cost.
 //!
-//! The tick runs in f32 (the M4F's hardware precision) with the math backend `M`; the
-//! start-up precomputation runs in `P` (f32 by default, f64 to trade start-up time for
-//! grid accuracy).
+//! The tick runs in f32 (the M4F's hardware precision) with the math backend `M`. Where
+//! the controller's tables come from is `S`, a [`ControllerSource`]: precomputed at
+//! start-up in f32 ([`Precompute`], the default) or f64, or prebuilt on the host and
+//! linked into flash ([`Prebuilt`], no start-up cost, and none of the limit-surface code
+//! in the binary).
 
-use crate::controller::{Controller, Libm, Measurement, TickMath};
+use crate::controller::{Controller, ControllerConfig, Libm, Measurement, Tables, TickMath};
 use crate::protocol::{
     encode, CommandFrame, CostUnit, DefaultFrameDecoder, Reply, Request, SensorFrame, Stats,
     WireConfigError, MAX_FRAME_LEN,
@@ -95,13 +97,58 @@ impl CostClock for NoClock {
     }
 }
 
+/// Where a device's controller comes from.
+///
+/// The error is the wire form itself (about 130 bytes, two fixed strings): there is no
+/// heap to box it in, and it goes straight into the `Configured` reply.
+#[allow(clippy::result_large_err)]
+pub trait ControllerSource<M: TickMath<f32>> {
+    /// The controller for `cfg`, or the reason it cannot be had.
+    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError>;
+}
+
+/// Precomputation at start-up, in precision `P`.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Precompute<P = f32>(PhantomData<P>);
+
+#[allow(clippy::result_large_err)]
+impl<M: TickMath<f32>, P: Real> ControllerSource<M> for Precompute<P> {
+    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError> {
+        Controller::<f32, M>::new_precomputed_in::<P>(cfg)
+            .map_err(|e| WireConfigError::from_config_error(&e))
+    }
+}
+
+/// Tables made on the host (`host-sim tables --format rust`) and linked in: a
+/// configuration is accepted only if it is the one the tables were made for.
+#[derive(Debug, Clone, Copy)]
+pub struct Prebuilt {
+    /// The configuration the tables were made for.
+    pub config: ControllerConfig,
+    /// The tables.
+    pub tables: Tables<'static, f32>,
+}
+
+#[allow(clippy::result_large_err)]
+impl<M: TickMath<f32>> ControllerSource<M> for Prebuilt {
+    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError> {
+        if cfg != self.config {
+            return Err(WireConfigError::new(
+                "tables",
+                &"the prebuilt tables were made for another configuration",
+            ));
+        }
+        Controller::from_tables(cfg, &self.tables).map_err(|e| WireConfigError::new("tables", &e))
+    }
+}
+
 /// The device: controller, decoder and counters. See the module docs.
 #[derive(Debug)]
-pub struct Device<M = Libm, P = f32> {
+pub struct Device<M = Libm, S = Precompute<f32>> {
     controller: Option<Controller<f32, M>>,
+    source: S,
     stack_probe: fn() -> u32,
     shutdown: Option<u8>,
-    _precision: PhantomData<P>,
     decoder: DefaultFrameDecoder,
     frames_sent: u32,
     ticks: u32,
@@ -111,7 +158,7 @@ pub struct Device<M = Libm, P = f32> {
     tx: [u8; MAX_FRAME_LEN],
 }
 
-impl<M: TickMath<f32>, P: Real> Default for Device<M, P> {
+impl<M: TickMath<f32>, P: Real> Default for Device<M, Precompute<P>> {
     fn default() -> Self {
         Self::new()
     }
@@ -121,15 +168,22 @@ fn no_stack_probe() -> u32 {
     0
 }
 
-impl<M: TickMath<f32>, P: Real> Device<M, P> {
-    /// An unconfigured device: it answers sensor frames with [`Reply::NotConfigured`]
-    /// until a configuration is accepted.
+impl<M: TickMath<f32>, P: Real> Device<M, Precompute<P>> {
+    /// An unconfigured device that precomputes its tables in `P`: it answers sensor
+    /// frames with [`Reply::NotConfigured`] until a configuration is accepted.
     pub fn new() -> Self {
+        Self::with_source(Precompute(PhantomData))
+    }
+}
+
+impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
+    /// An unconfigured device whose controllers come from `source`.
+    pub fn with_source(source: S) -> Self {
         Self {
             controller: None,
+            source,
             stack_probe: no_stack_probe,
             shutdown: None,
-            _precision: PhantomData,
             decoder: DefaultFrameDecoder::new(),
             frames_sent: 0,
             ticks: 0,
@@ -188,7 +242,7 @@ impl<M: TickMath<f32>, P: Real> Device<M, P> {
             Request::Hello { .. } => Reply::hello(),
             Request::Configure(cfg) => {
                 let start = clock.now();
-                let built = Controller::<f32, M>::new_precomputed_in::<P>(cfg);
+                let built = self.source.controller(cfg);
                 let cost = clock.now().wrapping_sub(start);
                 match built {
                     Ok(ctl) => {
@@ -201,8 +255,8 @@ impl<M: TickMath<f32>, P: Real> Device<M, P> {
                     }
                     Err(e) => {
                         #[cfg(feature = "defmt")]
-                        defmt::warn!("configuration refused: {=str}", e.param());
-                        Reply::Configured(Err(WireConfigError::from_config_error(&e)))
+                        defmt::warn!("configuration refused: {=str}", e.param.as_str());
+                        Reply::Configured(Err(e))
                     }
                 }
             }

@@ -79,6 +79,9 @@ pub struct FlsArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     format: Format,
+    /// Also draw the surface and its Eq. 10 ellipse into this SVG file (f64, 128 samples).
+    #[arg(long)]
+    plot: Option<std::path::PathBuf>,
 }
 
 #[derive(Debug, Serialize)]
@@ -190,7 +193,41 @@ pub fn run(args: &FlsArgs) -> Result<(), CliError> {
     match args.precision {
         Precision::F64 => run_in::<f64>(args, cfg),
         Precision::F32 => run_in::<f32>(args, cfg),
+    }?;
+    if let Some(path) = &args.plot {
+        plot(path, cfg)?;
     }
+    Ok(())
+}
+
+fn plot(path: &std::path::Path, cfg: FlsConfig) -> Result<(), CliError> {
+    use crate::fls_plot::{ellipse, plot_curves, Curve};
+    let model = FlsModel::<f64>::new(cfg).map_err(usage)?;
+    let table = FlsTable::<f64, 129>::sweep(&model, 128).map_err(usage)?;
+    let label = format!(
+        "{} k = {}{}",
+        cfg.shape.name(),
+        cfg.k,
+        cfg.skew.map_or(String::new(), |(d, a, h)| format!(
+            ", skew {d}, α {a}, locus {h}"
+        ))
+    );
+    let curves = [
+        Curve {
+            label: label.clone(),
+            points: table.points().iter().map(|p| (p.f, p.m)).collect(),
+            dashed: false,
+        },
+        ellipse(model.pitch(), "Eq. 10 ellipse"),
+    ];
+    plot_curves(
+        path,
+        &format!("Friction limit surface: {label}"),
+        "f̃ = f_t / (μN)",
+        "m̃ = m_n / (μNa)",
+        &curves,
+    )
+    .map_err(|e| CliError::Failed(format!("--plot: {e}")))
 }
 
 fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {

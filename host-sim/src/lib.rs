@@ -4,16 +4,21 @@
 //! - [`required_force_cmd`]: the slip-prevention rule for one load (`host-sim
 //!   required-force`).
 //! - [`sim`] and [`simulate_cmd`]: the grasp simulator (`host-sim simulate`).
+//! - [`tables_cmd`] and [`fls_plot`]: table export and verification, limit-surface
+//!   plots and parameter sweeps (`host-sim tables`).
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
 //!   by default the firmware loop on a thread of its own behind a pseudo-terminal.
 
 #![forbid(unsafe_code)]
 
+pub mod accuracy;
 pub mod fls_cmd;
+pub mod fls_plot;
 pub mod link;
 pub mod required_force_cmd;
 pub mod sim;
 pub mod simulate_cmd;
+pub mod tables_cmd;
 
 /// A command-line failure with its exit code.
 #[derive(Debug)]

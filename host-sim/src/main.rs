@@ -6,7 +6,7 @@
 #![forbid(unsafe_code)]
 
 use clap::{Parser, Subcommand};
-use host_sim::{fls_cmd, required_force_cmd, simulate_cmd, CliError};
+use host_sim::{accuracy, fls_cmd, required_force_cmd, simulate_cmd, tables_cmd, CliError};
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.
@@ -23,8 +23,12 @@ enum Command {
     Fls(fls_cmd::FlsArgs),
     /// Run grasp scenes against controllers over the serial link and report.
     Simulate(simulate_cmd::SimulateArgs),
+    /// Export the controller's tables (rust, bin, csv), verify a blob, plot surfaces.
+    Tables(tables_cmd::TablesArgs),
     /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
     RequiredForce(required_force_cmd::RequiredForceArgs),
+    /// Regenerate the accuracy/time report (accuracy.md, accuracy.svg).
+    Accuracy(accuracy::AccuracyArgs),
 }
 
 fn main() -> ExitCode {
@@ -50,6 +54,8 @@ fn main() -> ExitCode {
         Command::Fls(args) => fls_cmd::run(&args),
         Command::RequiredForce(args) => required_force_cmd::run(&args),
         Command::Simulate(args) => simulate_cmd::run_cmd(&args),
+        Command::Accuracy(args) => accuracy::run(&args),
+        Command::Tables(args) => tables_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

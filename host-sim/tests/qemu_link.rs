@@ -93,3 +93,106 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
     }
     assert_eq!(link.shutdown(7).unwrap(), 7);
 }
+
+/// The `prebuilt-tables` firmware: tables made by `host-sim tables --format rust` (f64
+/// precomputation, table mode) are linked in; configuring costs almost nothing, ticks
+/// equal a host controller with the same tables, and another configuration is refused.
+#[test]
+fn the_prebuilt_tables_firmware_needs_no_precomputation() {
+    let Some((qemu, _)) = available() else {
+        return;
+    };
+    let elf = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../target/firmware/prebuilt-tables/softgrip-firmware.elf");
+    if !elf.exists() {
+        eprintln!("skipped: run scripts/firmware-build.sh prebuilt-tables");
+        return;
+    }
+    let mut link = QemuLink::boot(&qemu, &elf).unwrap();
+    let cfg = ControllerConfig {
+        mode: Mode::Table,
+        ..ControllerConfig::default()
+    };
+    let Reply::Configured(Err(e)) = link
+        .exchange(&Request::Configure(ControllerConfig::default()))
+        .unwrap()
+    else {
+        panic!("an ellipse-mode configuration must be refused")
+    };
+    assert_eq!(e.param.as_str(), "tables");
+    assert_eq!(
+        link.exchange(&Request::Configure(cfg)).unwrap(),
+        Reply::Configured(Ok(()))
+    );
+    let mut direct = Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).unwrap();
+    for i in 0..200u32 {
+        let p = i as f32 * 0.07;
+        let f = SensorFrame {
+            seq: i,
+            timestamp_us: 1000 * u64::from(i) + 1,
+            tangential_force_n: [2.0 * p.sin().abs(), 0.4 * p.cos()],
+            torsional_moment_nm: 0.012 * (0.9 * p).sin(),
+            normal_force_n: 3.0,
+        };
+        let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
+            panic!()
+        };
+        let want = direct.tick(&Measurement {
+            tangential_force_n: f.tangential_force_n,
+            torsional_moment_nm: f.torsional_moment_nm,
+            normal_force_n: f.normal_force_n,
+            timestamp_us: f.timestamp_us,
+        });
+        assert_eq!(
+            cmd.normal_force_n.to_bits(),
+            want.command_n.to_bits(),
+            "tick {i}"
+        );
+    }
+    let Reply::Stats(s) = link.exchange(&Request::GetStats).unwrap() else {
+        panic!()
+    };
+    eprintln!(
+        "prebuilt: start-up {} instructions, stack peak {} B",
+        s.startup_cost, s.stack_peak_bytes
+    );
+    assert!(s.startup_cost < 50_000, "{s:?}");
+    assert_eq!(link.shutdown(0).unwrap(), 0);
+}
+
+/// `simulate --link qemu` gives the in-process link's time series bit for bit, and its
+/// summary.json has the `target` object.
+#[test]
+fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
+    if available().is_none() {
+        return;
+    }
+    let scene = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/lift_hold.toml");
+    let base = std::env::temp_dir().join(format!("softgrip-qemu-sim-{}", std::process::id()));
+    let run = |link: &str| {
+        let out = base.join(link);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(["simulate", scene.to_str().unwrap(), "--link", link, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    let (q, i) = (run("qemu"), run("inprocess"));
+    let series = |d: &std::path::Path| {
+        std::fs::read_to_string(d.join("timeseries_lift_hold_softgrip.csv")).unwrap()
+    };
+    assert_eq!(series(&q), series(&i));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(q.join("summary.json")).unwrap()).unwrap();
+    let t = &v["target"];
+    assert!(t["startup_instructions"].as_f64().unwrap() > 1e5);
+    let tick = &t["tick_instructions"]["ellipse"];
+    for k in ["min", "median", "max"] {
+        assert!(tick[k].as_f64().unwrap() > 0.0, "{k}");
+    }
+    assert!(t["flash_bytes"].as_u64().unwrap() > 10_000);
+    assert!(t["stack_peak_bytes"].as_f64().unwrap() > 1_000.0);
+    let _ = std::fs::remove_dir_all(&base);
+}

@@ -265,6 +265,6 @@ fn the_command_line_writes_the_four_outputs_and_rejects_bad_input() {
     let _ = std::fs::remove_file(&bad);
     let o = run(&[scene.to_str().unwrap(), "--controller", "pid"]);
     assert_eq!(o.status.code(), Some(2));
-    let o = run(&[scene.to_str().unwrap(), "--link", "qemu"]);
+    let o = run(&[scene.to_str().unwrap(), "--link", "carrier-pigeon"]);
     assert_eq!(o.status.code(), Some(2));
 }

@@ -29,7 +29,7 @@ pub(crate) fn row_kernels<T: Real>(lambda: T, d: T, y: T) -> [T; 3] {
     let r1 = (au1 * au1 + y2).libm_sqrt();
     let r2 = (u2 * u2 + y2).libm_sqrt();
     let s = r1 + r2;
-    let (y_d, y2_d) = if ay == T::zero() {
+    let (y_d, y2_d) = if y2 == T::zero() {
         (T::zero(), T::zero())
     } else {
         let big_d = if u2 >= T::zero() {

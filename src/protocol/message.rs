@@ -170,12 +170,21 @@ impl WireConfigError {
     /// Copies `err`'s parameter name and message, cutting each (at a `char` boundary) to
     /// its capacity when too long. Never fails, never panics.
     pub fn from_config_error(err: &ConfigError) -> Self {
-        let mut param = String::new();
-        let mut message = String::new();
+        Self::new(err.param(), err)
+    }
+
+    /// A parameter name and any message, each cut to its capacity like
+    /// [`WireConfigError::from_config_error`].
+    pub fn new(param: &str, message: &dyn fmt::Display) -> Self {
+        let mut p = String::new();
+        let mut m = String::new();
         // `Truncating` never reports an error, so neither can these writes.
-        let _ = Truncating::new(&mut param).write_str(err.param());
-        let _ = write!(Truncating::new(&mut message), "{err}");
-        Self { param, message }
+        let _ = Truncating::new(&mut p).write_str(param);
+        let _ = write!(Truncating::new(&mut m), "{message}");
+        Self {
+            param: p,
+            message: m,
+        }
     }
 }
 

@@ -50,9 +50,17 @@ pub struct RunOutput {
 /// true contact's skew, which the controller does not know), the scene's controller
 /// settings, and the scene's tick rate.
 pub fn controller_config(scene: &Scene) -> Result<ControllerConfig, SceneError> {
+    controller_config_for(&scene.finger, &scene.controller, scene.tick_hz)
+}
+
+/// softgrip's configuration for a finger, controller settings and tick rate (ellipse
+/// mode; set `mode` on the result for table mode).
+pub fn controller_config_for(
+    f: &crate::sim::scene::Finger,
+    s: &crate::sim::scene::ControllerSettings,
+    tick_hz: f64,
+) -> Result<ControllerConfig, SceneError> {
     let d = ControllerConfig::default();
-    let s = &scene.controller;
-    let f = &scene.finger;
     let cfg = ControllerConfig {
         mu: f.mu,
         shape: if f.shape == "disc" {
@@ -70,11 +78,11 @@ pub fn controller_config(scene: &Scene) -> Result<ControllerConfig, SceneError> 
         n_max_n: s.n_max_n.unwrap_or(d.n_max_n),
         rise_rate_n_per_s: s.rise_rate_n_per_s.unwrap_or(d.rise_rate_n_per_s),
         fall_rate_n_per_s: s.fall_rate_n_per_s.unwrap_or(d.fall_rate_n_per_s),
-        tick_period_s: 1.0 / scene.tick_hz,
+        tick_period_s: 1.0 / tick_hz,
         stale_timeout_s: s
             .stale_timeout_s
             .unwrap_or(d.stale_timeout_s)
-            .max(1.0 / scene.tick_hz),
+            .max(1.0 / tick_hz),
         fault_force_n: s.fault_force_n.unwrap_or(d.fault_force_n),
         force_range_n: s.force_range_n.unwrap_or(d.force_range_n),
         moment_range_nm: s.moment_range_nm.unwrap_or(d.moment_range_nm),

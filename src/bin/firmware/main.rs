@@ -12,7 +12,8 @@
 //! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
 //! software here). Variants (cargo features): `soft-sqrt` ticks with the `Libm` backend,
 //! `fast-math` with micromath's square root, `precompute-f64` precomputes in f64. Build
-//! with `scripts/firmware-build.sh`.
+//! with `scripts/firmware-build.sh`. `prebuilt-tables` links in tables made on the host
+//! instead of precomputing them (only their configuration is then accepted).
 
 #![no_std]
 #![no_main]
@@ -33,6 +34,12 @@ mod usart;
 use cortex_m_rt::entry;
 use softgrip::device::{Device, NoActuator};
 
+/// The tables `host-sim tables --format rust` made (feature `prebuilt-tables`).
+#[cfg(feature = "prebuilt-tables")]
+mod prebuilt {
+    include!(concat!(env!("OUT_DIR"), "/prebuilt_tables.rs"));
+}
+
 #[cfg(feature = "fast-math")]
 type Math = softgrip::controller::Micromath;
 #[cfg(all(feature = "soft-sqrt", not(feature = "fast-math")))]
@@ -40,9 +47,9 @@ type Math = softgrip::controller::Libm;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 type Math = fpu_sqrt::FpuSqrt;
 
-#[cfg(feature = "precompute-f64")]
+#[cfg(all(feature = "precompute-f64", not(feature = "prebuilt-tables")))]
 type Precompute = f64;
-#[cfg(not(feature = "precompute-f64"))]
+#[cfg(not(any(feature = "precompute-f64", feature = "prebuilt-tables")))]
 type Precompute = f32;
 
 #[entry]
@@ -50,7 +57,14 @@ fn main() -> ! {
     stack::paint();
     let mut clock = tim2::InstructionCounter::start();
     let mut serial = usart::Usart1::init();
-    let mut device = Device::<Math, Precompute>::new().with_stack_probe(stack::peak_bytes);
+    #[cfg(not(feature = "prebuilt-tables"))]
+    let device = Device::<Math, softgrip::device::Precompute<Precompute>>::new();
+    #[cfg(feature = "prebuilt-tables")]
+    let device = Device::<Math, _>::with_source(softgrip::device::Prebuilt {
+        config: prebuilt::CONFIG,
+        tables: prebuilt::tables(),
+    });
+    let mut device = device.with_stack_probe(stack::peak_bytes);
     let code = loop {
         match device.poll(&mut serial, &mut NoActuator, &mut clock) {
             Ok(_) => {}

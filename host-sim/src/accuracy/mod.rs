@@ -1,0 +1,288 @@
+//! `host-sim accuracy`: what accuracy costs in time.
+//!
+//! Regenerates a reproducible report, `accuracy.md` with tables and `accuracy.svg` with
+//! the Pareto plot, in `--out`: for each knob of the limit-surface numerics and the
+//! controller (quadrature order, centre-of-rotation samples, aspect grid, interpolation,
+//! f32/f64 precomputation, `libm`/`micromath`, ellipse/table/exact per tick), the error it
+//! leaves (pitch, limit-surface radius, commanded force against the exact f64 answer) and
+//! what it costs (host time per precomputation and per tick, from the same run; on the
+//! emulated Cortex-M4F with `--target`), the Pareto front, the defaults, and the core
+//! against an independent brute-force 2-D integration at matched accuracy.
+//!
+//! - [`exact`]: the exact answers (and the exact-integration-per-tick rule).
+//! - [`knobs`]: the configurations and their measurement.
+//! - [`extras`]: the aspect grid's and the surface representations' own errors.
+//! - [`brute`]: the brute-force comparison.
+//! - [`target`]: instruction counts in QEMU (`--target`).
+//! - [`report`]: the Markdown and the plot.
+
+pub mod brute;
+pub mod exact;
+pub mod extras;
+pub mod knobs;
+pub mod report;
+pub mod target;
+
+#[path = "../../../tests/common/brute_force.rs"]
+#[allow(dead_code, missing_docs)]
+mod brute_force;
+
+use crate::CliError;
+use clap::Args;
+use knobs::{Budget, FingerRef, Knob, Measured, Variant};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Arguments of `host-sim accuracy`.
+#[derive(Debug, Args)]
+pub struct AccuracyArgs {
+    /// Fewer settings, loads and repetitions: finishes within a minute on two cores.
+    #[arg(long)]
+    quick: bool,
+    /// Where to write accuracy.md and accuracy.svg.
+    #[arg(long, default_value = "accuracy-out")]
+    out: PathBuf,
+    /// Also count instructions on the emulated Cortex-M4F (needs
+    /// scripts/firmware-setup.sh and scripts/firmware-build.sh; slow).
+    #[arg(long)]
+    target: bool,
+}
+
+/// Where and when the report was made.
+#[derive(Debug, Clone)]
+pub struct Header {
+    /// CPU model and core count.
+    pub machine: String,
+    /// UTC date and time.
+    pub date: String,
+    /// `git rev-parse --short HEAD`, with a note on uncommitted changes, if available.
+    pub commit: Option<String>,
+    /// `rustc --version`, if available.
+    pub rustc: Option<String>,
+    /// The command line, as `cargo run` would take it.
+    pub command: String,
+}
+
+/// Everything the report shows.
+#[derive(Debug, Clone)]
+pub struct Results {
+    /// Where and when.
+    pub header: Header,
+    /// The run's size.
+    pub budget: Budget,
+    /// The two fingers and their references.
+    pub fingers: [FingerRef; 2],
+    /// Each knob's rows: setting label and configuration.
+    pub sections: Vec<(Knob, Vec<(String, Variant)>)>,
+    /// What each distinct configuration measured.
+    pub measured: BTreeMap<Variant, Measured>,
+    /// The core's aspect grid on its own.
+    pub aspect_grid: Vec<extras::AspectGridRow>,
+    /// Probe names of [`Results::representation`].
+    pub probes: Vec<String>,
+    /// Surface representations on their own.
+    pub representation: Vec<extras::RepresentationRow>,
+    /// Core against brute force.
+    pub brute: brute::BruteReport,
+    /// Instruction counts on the emulated target (`--target`), or why there are none.
+    pub target: Result<target::TargetResults, String>,
+    /// Seconds the measurements took.
+    pub elapsed_s: f64,
+}
+
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let days = (secs / 86_400) as i64;
+    let rem = secs % 86_400;
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        rem / 3600,
+        rem % 3600 / 60
+    )
+}
+
+fn machine() -> String {
+    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = info
+        .lines()
+        .find(|l| l.starts_with("model name"))
+        .and_then(|l| l.split(':').nth(1))
+        .map_or_else(|| "unknown CPU".to_string(), |s| s.trim().to_string());
+    let cores = info.lines().filter(|l| l.starts_with("processor")).count();
+    let cores = if cores == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        cores
+    };
+    format!(
+        "{model}, {cores} core{} ({} {})",
+        if cores == 1 { "" } else { "s" },
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
+}
+
+fn command_output(program: &str, args: &[&str]) -> Option<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let out = std::process::Command::new(program)
+        .args(args)
+        .current_dir(root)
+        .output()
+        .ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+fn header() -> Header {
+    let commit = command_output("git", &["rev-parse", "--short", "HEAD"]).map(|c| {
+        match command_output("git", &["status", "--porcelain", "--untracked-files=no"]) {
+            Some(s) if !s.is_empty() => format!("{c} (with uncommitted changes)"),
+            _ => c,
+        }
+    });
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    Header {
+        machine: machine(),
+        date: utc_now(),
+        commit,
+        rustc: command_output("rustc", &["--version"]),
+        command: format!("cargo run --release -p host-sim -- {}", args.join(" ")),
+    }
+}
+
+fn progress(msg: &str) {
+    eprintln!("accuracy: {msg}");
+}
+
+/// Measures everything `args` asks for.
+pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
+    let started = Instant::now();
+    let budget = if quick {
+        Budget::quick()
+    } else {
+        Budget::full()
+    };
+    let header = header();
+    progress("exact references (order 128, f64)");
+    let fingers = [
+        FingerRef::build("rectangle", knobs::rect_config(), &budget)?,
+        FingerRef::build("disc", knobs::disc_config(), &budget)?,
+    ];
+    let sections: Vec<(Knob, Vec<(String, Variant)>)> =
+        Knob::ALL.iter().map(|&k| (k, k.rows(&budget))).collect();
+    let mut measured: BTreeMap<Variant, Measured> = BTreeMap::new();
+    for (knob, rows) in &sections {
+        progress(&format!("{} ({} settings)", knob.title(), rows.len()));
+        for (_, v) in rows {
+            if !measured.contains_key(v) {
+                let m = knobs::measure(v, &fingers)?;
+                measured.insert(*v, m);
+            }
+        }
+    }
+    progress(&format!(
+        "timing {} configurations, {} rounds",
+        measured.len(),
+        budget.rounds
+    ));
+    let mut timers = measured
+        .keys()
+        .map(|v| {
+            Ok((
+                *v,
+                knobs::timer(v, &fingers, &budget)?,
+                Vec::new(),
+                Vec::new(),
+            ))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    for _ in 0..budget.rounds {
+        for (_, timer, startups, ticks) in timers.iter_mut() {
+            let (s, t) = timer();
+            startups.push(s);
+            ticks.push(t);
+        }
+    }
+    for (v, _, startups, ticks) in timers {
+        if let Some(m) = measured.get_mut(&v) {
+            m.precompute_us = knobs::median(startups);
+            m.tick_ns = knobs::median(ticks);
+        }
+    }
+    progress("aspect grid and surface representations");
+    let aspect_grid = extras::aspect_grid_rows(&fingers[0].reference, &budget.aspects, &budget)?;
+    let probes = extras::representation_probes(&fingers[0].reference)
+        .into_iter()
+        .map(|(name, _)| name)
+        .collect();
+    let representation = extras::representation_rows(
+        &fingers[0].reference,
+        &fingers[1].reference,
+        &budget.samples,
+        &budget,
+    )?;
+    progress("core against brute force");
+    let brute = brute::compare(&budget)?;
+    let target = if with_target {
+        progress("instruction counts in QEMU");
+        target::measure(&measured, &budget)
+    } else {
+        Err("not measured in this run (`--target`)".into())
+    };
+    Ok(Results {
+        header,
+        budget,
+        fingers,
+        sections,
+        measured,
+        aspect_grid,
+        probes,
+        representation,
+        brute,
+        target,
+        elapsed_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// Runs `host-sim accuracy`.
+pub fn run(args: &AccuracyArgs) -> Result<(), CliError> {
+    let fail = |e: &dyn std::fmt::Display| CliError::Failed(format!("--out: {e}"));
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| fail(&format!("{}: {e}", args.out.display())))?;
+    let md_path = args.out.join("accuracy.md");
+    let svg_path = args.out.join("accuracy.svg");
+    // Fail now, not after the measurements, if the files cannot be written.
+    for p in [&md_path, &svg_path] {
+        std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(p)
+            .map_err(|e| fail(&format!("{}: {e}", p.display())))?;
+    }
+    let results = measure_all(args.quick, args.target).map_err(CliError::Failed)?;
+    report::plot(&svg_path, &results).map_err(|e| fail(&e))?;
+    let md = report::markdown(&results);
+    std::fs::write(&md_path, md).map_err(|e| fail(&format!("{}: {e}", md_path.display())))?;
+    print!("{}", report::summary(&results));
+    println!(
+        "wrote {} and {} ({:.0} s)",
+        md_path.display(),
+        svg_path.display(),
+        results.elapsed_s
+    );
+    Ok(())
+}

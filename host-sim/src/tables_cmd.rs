@@ -1,0 +1,593 @@
+//! `host-sim tables`: export the controller's start-up tables for the firmware (Rust
+//! source, a versioned binary blob, or CSV), verify a blob, plot limit surfaces as the
+//! paper's Figures 9–12 do, and sweep parameter sets in parallel.
+
+use crate::fls_plot::{ellipse, plot_curves, Curve};
+use crate::sim::scene::{ControllerSettings, Finger};
+use crate::CliError;
+use clap::{Args, Subcommand, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Deserialize;
+use softgrip::controller::blob::{encode, Blob, BLOB_MAX_LEN};
+use softgrip::controller::{
+    Controller, ControllerConfig, FingerShape, Mode, SkewParams, Tables, DIRECTIONS,
+};
+use softgrip::fls::RadialGap;
+use softgrip::{FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Output format of `tables`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    /// Rust source of const tables (`softgrip_tables.rs`), for the firmware's
+    /// `prebuilt-tables` feature.
+    Rust,
+    /// A versioned, CRC-checked binary blob (`softgrip_tables.bin`).
+    Bin,
+    /// CSV for analysis (`tables_nodes.csv`, `tables_directions.csv`).
+    Csv,
+}
+
+/// Arithmetic of the precomputation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TablePrecision {
+    /// f64 (default: free on the host).
+    F64,
+    /// f32, as the firmware computes them.
+    F32,
+}
+
+/// `tables verify`.
+#[derive(Debug, Subcommand)]
+pub enum TablesAction {
+    /// Recompute the tables of a blob and report the largest deviation; exit 1 on a
+    /// corrupted or mismatched file.
+    Verify {
+        /// The blob (`.bin`).
+        file: PathBuf,
+    },
+}
+
+/// Arguments of `host-sim tables`.
+#[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct TablesArgs {
+    /// `verify FILE`.
+    #[command(subcommand)]
+    action: Option<TablesAction>,
+    /// A TOML file with a `[finger]` table (and optionally `[controller]`), e.g. a scene;
+    /// default: the controller's default finger.
+    #[arg(long)]
+    finger: Option<PathBuf>,
+    /// Export format.
+    #[arg(long, value_enum, default_value_t = TableFormat::Bin)]
+    format: TableFormat,
+    /// The controller mode the tables serve.
+    #[arg(long, default_value = "table")]
+    mode: String,
+    /// Arithmetic of the precomputation.
+    #[arg(long, value_enum, default_value_t = TablePrecision::F64)]
+    precision: TablePrecision,
+    /// Output directory.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Also draw the limit surfaces as the paper's Figures 9–12 (SVG).
+    #[arg(long)]
+    plot: bool,
+    /// Also sweep k × skew × aspect × μ in parallel and write `sweep.csv`.
+    #[arg(long)]
+    sweep: bool,
+}
+
+#[derive(Debug, Deserialize)]
+struct FingerFile {
+    finger: Finger,
+    #[serde(default)]
+    controller: ControllerSettings,
+    #[serde(default = "default_tick_hz")]
+    tick_hz: f64,
+}
+
+fn default_tick_hz() -> f64 {
+    1000.0
+}
+
+fn usage(msg: impl std::fmt::Display) -> CliError {
+    CliError::Usage(msg.to_string())
+}
+
+/// The configuration the arguments describe.
+pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
+    let mode = match args.mode.as_str() {
+        "table" => Mode::Table,
+        "ellipse" => Mode::Ellipse,
+        other => {
+            return Err(usage(format!(
+                "--mode: \"{other}\" is not ellipse or table"
+            )))
+        }
+    };
+    let cfg = match &args.finger {
+        None => ControllerConfig::default(),
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?;
+            let f: FingerFile = toml::from_str(&text)
+                .map_err(|e| usage(format!("--finger: {}: {}", p.display(), e.message().trim())))?;
+            crate::sim::run::controller_config_for(&f.finger, &f.controller, f.tick_hz)
+                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?
+        }
+    };
+    let cfg = ControllerConfig { mode, ..cfg };
+    cfg.validate()
+        .map_err(|e| usage(format!("--finger: {e}")))?;
+    Ok(cfg)
+}
+
+fn build(cfg: ControllerConfig, precision: TablePrecision) -> Result<Controller<f32>, CliError> {
+    match precision {
+        TablePrecision::F64 => Controller::<f32>::new_precomputed_in::<f64>(cfg),
+        TablePrecision::F32 => Controller::<f32>::new(cfg),
+    }
+    .map_err(|e| usage(format!("--finger: {e}")))
+}
+
+fn f32_lit(x: f32) -> String {
+    format!("f32::from_bits({:#010x})", x.to_bits())
+}
+
+fn f64_lit(x: f64) -> String {
+    format!("f64::from_bits({:#018x})", x.to_bits())
+}
+
+/// Rust source of const tables: `CONFIG`, the node arrays, `INV_RADIUS` and `tables()`.
+pub fn rust_source(cfg: &ControllerConfig, t: &Tables<'_, f32>) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// Generated by `host-sim tables --format rust`; do not edit. Exact values as bit\n\
+         // patterns. {} force nodes, {} aspect rows of {DIRECTIONS} directions.\n",
+        t.force_n.len(),
+        t.inv_radius.len()
+    );
+    let skew = match cfg.skew {
+        None => "None".to_string(),
+        Some(p) => format!(
+            "Some(softgrip::controller::SkewParams {{ delta_over_a: {}, alpha: {}, locus_over_a: {} }})",
+            f64_lit(p.delta_over_a),
+            f64_lit(p.alpha),
+            f64_lit(p.locus_over_a)
+        ),
+    };
+    let _ = writeln!(
+        s,
+        "/// The configuration these tables were made for.\n\
+         pub const CONFIG: softgrip::controller::ControllerConfig = softgrip::controller::ControllerConfig {{\n    \
+         mu: {}, shape: softgrip::controller::FingerShape::{:?}, k: {}, skew: {skew},\n    \
+         c_m_per_n_gamma: {}, gamma: {}, half_length_m: {}, safety: {},\n    \
+         n_min_n: {}, n_max_n: {}, rise_rate_n_per_s: {}, fall_rate_n_per_s: {},\n    \
+         tick_period_s: {}, stale_timeout_s: {}, fault_force_n: {},\n    \
+         force_range_n: {}, moment_range_nm: {}, mode: softgrip::controller::Mode::{:?},\n    \
+         force_nodes: {}, quadrature_order: {}, table_samples: {}, aspect_count: {},\n}};\n",
+        f64_lit(cfg.mu),
+        cfg.shape,
+        f64_lit(cfg.k),
+        f64_lit(cfg.c_m_per_n_gamma),
+        f64_lit(cfg.gamma),
+        f64_lit(cfg.half_length_m),
+        f64_lit(cfg.safety),
+        f64_lit(cfg.n_min_n),
+        f64_lit(cfg.n_max_n),
+        f64_lit(cfg.rise_rate_n_per_s),
+        f64_lit(cfg.fall_rate_n_per_s),
+        f64_lit(cfg.tick_period_s),
+        f64_lit(cfg.stale_timeout_s),
+        f64_lit(cfg.fault_force_n),
+        f64_lit(cfg.force_range_n),
+        f64_lit(cfg.moment_range_nm),
+        cfg.mode,
+        cfg.force_nodes,
+        cfg.quadrature_order,
+        cfg.table_samples,
+        cfg.aspect_count
+    );
+    let array = |s: &mut String, name: &str, v: &[f32]| {
+        let items: Vec<String> = v.iter().map(|&x| f32_lit(x)).collect();
+        let _ = writeln!(
+            s,
+            "static {name}: [f32; {}] = [\n    {}\n];\n",
+            v.len(),
+            items.join(",\n    ")
+        );
+    };
+    array(&mut s, "FORCE_N", t.force_n);
+    array(&mut s, "ARM_M", t.arm_m);
+    array(&mut s, "INV_ARM_PER_M", t.inv_arm_per_m);
+    array(&mut s, "ASPECT_POS", t.aspect_pos);
+    let rows: Vec<String> = t
+        .inv_radius
+        .iter()
+        .map(|r| {
+            let items: Vec<String> = r.iter().map(|&x| f32_lit(x)).collect();
+            format!("[{}]", items.join(", "))
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        "static INV_RADIUS: [[f32; {DIRECTIONS}]; {}] = [\n    {}\n];\n",
+        t.inv_radius.len(),
+        rows.join(",\n    ")
+    );
+    let _ = writeln!(
+        s,
+        "/// The tables, for `Controller::from_tables(CONFIG, &tables())`.\n\
+         pub fn tables() -> softgrip::controller::Tables<'static, f32> {{\n    \
+         softgrip::controller::Tables {{\n        force_n: &FORCE_N,\n        arm_m: &ARM_M,\n        \
+         inv_arm_per_m: &INV_ARM_PER_M,\n        aspect_pos: &ASPECT_POS,\n        \
+         inv_radius: &INV_RADIUS,\n    }}\n}}"
+    );
+    s
+}
+
+/// The bytes the tables occupy in flash as Rust statics.
+pub fn flash_bytes(t: &Tables<'_, f32>) -> usize {
+    4 * (4 * t.force_n.len() + DIRECTIONS * t.inv_radius.len())
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    std::fs::write(path, bytes)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))
+}
+
+fn export(args: &TablesArgs, out: &Path) -> Result<(), CliError> {
+    let cfg = config(args)?;
+    let ctl = build(cfg, args.precision)?;
+    let t = ctl.capacity().tables();
+    std::fs::create_dir_all(out)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", out.display())))?;
+    match args.format {
+        TableFormat::Rust => {
+            let path = out.join("softgrip_tables.rs");
+            write(&path, rust_source(&cfg, &t).as_bytes())?;
+            println!(
+                "wrote {} ({} force nodes, {} aspect rows; {} bytes of tables in flash)",
+                path.display(),
+                t.force_n.len(),
+                t.inv_radius.len(),
+                flash_bytes(&t)
+            );
+        }
+        TableFormat::Bin => {
+            let mut buf = vec![0u8; BLOB_MAX_LEN];
+            let len = encode(&cfg, &t, &mut buf).map_err(|e| CliError::Failed(e.to_string()))?;
+            let path = out.join("softgrip_tables.bin");
+            write(&path, &buf[..len])?;
+            println!(
+                "wrote {} ({len} bytes, format version {})",
+                path.display(),
+                softgrip::controller::blob::BLOB_VERSION
+            );
+        }
+        TableFormat::Csv => {
+            let mut nodes = String::from("node,force_n,arm_m,inv_arm_per_m,aspect_pos\n");
+            for j in 0..t.force_n.len() {
+                let _ = writeln!(
+                    nodes,
+                    "{j},{},{},{},{}",
+                    t.force_n[j], t.arm_m[j], t.inv_arm_per_m[j], t.aspect_pos[j]
+                );
+            }
+            let mut dirs = String::from("aspect_row,direction_t,inv_radius\n");
+            for (r, row) in t.inv_radius.iter().enumerate() {
+                for (i, w) in row.iter().enumerate() {
+                    let tt = i as f64 / (DIRECTIONS - 1) as f64;
+                    let _ = writeln!(dirs, "{r},{tt},{w}");
+                }
+            }
+            write(&out.join("tables_nodes.csv"), nodes.as_bytes())?;
+            write(&out.join("tables_directions.csv"), dirs.as_bytes())?;
+            println!(
+                "wrote {}/tables_nodes.csv and tables_directions.csv",
+                out.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Largest relative deviation between two tables.
+pub fn deviation(a: &Tables<'_, f32>, b: &Tables<'_, f32>) -> Option<(f64, &'static str)> {
+    let mut worst = (0.0f64, "none");
+    let pairs: [(&'static str, &[f32], &[f32]); 4] = [
+        ("force_n", a.force_n, b.force_n),
+        ("arm_m", a.arm_m, b.arm_m),
+        ("inv_arm_per_m", a.inv_arm_per_m, b.inv_arm_per_m),
+        ("aspect_pos", a.aspect_pos, b.aspect_pos),
+    ];
+    for (name, x, y) in pairs {
+        if x.len() != y.len() {
+            return None;
+        }
+        for (p, q) in x.iter().zip(y) {
+            let d = (f64::from(*p) - f64::from(*q)).abs() / f64::from(q.abs()).max(1e-12);
+            if d > worst.0 {
+                worst = (d, name);
+            }
+        }
+    }
+    if a.inv_radius.len() != b.inv_radius.len() {
+        return None;
+    }
+    for (r, s) in a.inv_radius.iter().zip(b.inv_radius) {
+        for (p, q) in r.iter().zip(s) {
+            let d = (f64::from(*p) - f64::from(*q)).abs() / f64::from(q.abs()).max(1e-12);
+            if d > worst.0 {
+                worst = (d, "inv_radius");
+            }
+        }
+    }
+    Some(worst)
+}
+
+/// The largest relative deviation `verify` accepts: f32 rounding of an f32 or f64
+/// precomputation.
+pub const VERIFY_TOLERANCE: f64 = 1e-4;
+
+fn verify(file: &Path) -> Result<(), CliError> {
+    let bytes =
+        std::fs::read(file).map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
+    let blob =
+        Blob::parse(&bytes).map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
+    let cfg = blob.config();
+    let fresh = Controller::<f32>::new_precomputed_in::<f64>(cfg)
+        .map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
+    let (dev, what) = deviation(&blob.tables(), &fresh.capacity().tables()).ok_or_else(|| {
+        CliError::Failed(format!(
+            "{}: the table sizes do not match a recomputation",
+            file.display()
+        ))
+    })?;
+    println!(
+        "{}: valid blob; largest deviation from an f64 recomputation {dev:.2e} (in {what})",
+        file.display()
+    );
+    if dev > VERIFY_TOLERANCE {
+        return Err(CliError::Failed(format!(
+            "{}: deviation {dev:.2e} in {what} exceeds {VERIFY_TOLERANCE:.0e}: mismatched tables",
+            file.display()
+        )));
+    }
+    Ok(())
+}
+
+fn bar(len: u64, what: &str) -> ProgressBar {
+    let b = ProgressBar::new(len);
+    b.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}<{eta}]")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    b.set_message(what.to_string());
+    b
+}
+
+fn surface(
+    shape: Shape,
+    k: f64,
+    skew: Option<(f64, f64, f64)>,
+    samples: usize,
+) -> Result<(Vec<(f64, f64)>, f64), String> {
+    let model = FlsModel::<f64>::new(FlsConfig {
+        shape,
+        k,
+        skew,
+        order: QuadratureOrder::DEFAULT,
+    })
+    .map_err(|e| e.to_string())?;
+    let table = FlsTable::<f64, 257>::sweep(&model, samples).map_err(|e| e.to_string())?;
+    Ok((
+        table.points().iter().map(|p| (p.f, p.m)).collect(),
+        model.pitch(),
+    ))
+}
+
+/// A figure: title, file name, and its surfaces `(label, shape, k, skew)`.
+type Figure = (
+    &'static str,
+    &'static str,
+    Vec<(String, Shape, f64, Option<(f64, f64, f64)>)>,
+);
+
+fn figures() -> Vec<Figure> {
+    let sq = Shape::Rect { aspect: 1.0 };
+    let paper = Some((0.9, 1.1, 0.45));
+    vec![
+        (
+            "Rectangle l = a: the limit surface for several k (cf. Fig. 9)",
+            "fls_k.svg",
+            [1.0, 2.0, 4.0, 50.0, f64::INFINITY]
+                .iter()
+                .map(|&k| (format!("k = {k}"), sq, k, None))
+                .collect(),
+        ),
+        (
+            "Rectangle l = a, k = 2: with and without skew (Δ/a = 0.9, α = 1.1) (cf. Fig. 10)",
+            "fls_skew.svg",
+            vec![
+                ("symmetric".into(), sq, 2.0, None),
+                ("skewed".into(), sq, 2.0, paper),
+            ],
+        ),
+        (
+            "Rectangle l = a, skewed: several k (cf. Fig. 11)",
+            "fls_skew_k.svg",
+            [2.0, 4.0, 50.0]
+                .iter()
+                .map(|&k| (format!("k = {k}, skewed"), sq, k, paper))
+                .collect(),
+        ),
+        (
+            "Disc, k = 2, skewed: variants of the P_max locus h/a (cf. Fig. 12)",
+            "fls_locus.svg",
+            [0.0, 0.225, 0.45, 0.675]
+                .iter()
+                .map(|&h| {
+                    (
+                        format!("locus h/a = {h}"),
+                        Shape::Disc,
+                        2.0,
+                        Some((0.9, 1.1, h)),
+                    )
+                })
+                .collect(),
+        ),
+    ]
+}
+
+/// A computed surface: (figure, curve), its points and its pitch.
+type Swept = ((usize, usize), Vec<(f64, f64)>, f64);
+
+fn plot(out: &Path) -> Result<(), CliError> {
+    let figs = figures();
+    let jobs: Vec<(usize, usize)> = figs
+        .iter()
+        .enumerate()
+        .flat_map(|(f, fig)| (0..fig.2.len()).map(move |c| (f, c)))
+        .collect();
+    let b = bar(jobs.len() as u64, "surfaces");
+    let results: Vec<Result<Swept, String>> = jobs
+        .par_iter()
+        .map(|&(f, c)| {
+            let (_, shape, k, skew) = &figs[f].2[c];
+            let r = surface(*shape, *k, *skew, 128).map(|(p, pitch)| ((f, c), p, pitch));
+            b.inc(1);
+            r
+        })
+        .collect();
+    b.finish_and_clear();
+    let mut done: Vec<Swept> = results
+        .into_iter()
+        .collect::<Result<_, _>>()
+        .map_err(CliError::Failed)?;
+    done.sort_by_key(|r| r.0);
+    for (f, (title, file, specs)) in figs.iter().enumerate() {
+        let mut curves = Vec::new();
+        let mut pitches: Vec<f64> = Vec::new();
+        for (c, (label, ..)) in specs.iter().enumerate() {
+            if let Some((_, pts, pitch)) = done.iter().find(|r| r.0 == (f, c)) {
+                curves.push(Curve {
+                    label: label.clone(),
+                    points: pts.clone(),
+                    dashed: false,
+                });
+                // One ellipse per pitch: the skew does not change it.
+                if !pitches.iter().any(|p| (p - pitch).abs() < 1e-12) {
+                    pitches.push(*pitch);
+                    curves.push(ellipse(*pitch, &format!("{label}: Eq. 10 ellipse")));
+                }
+            }
+        }
+        let path = out.join(file);
+        plot_curves(&path, title, "f̃ = f_t / (μN)", "m̃ = m_n / (μNa)", &curves)
+            .map_err(CliError::Failed)?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn sweep(out: &Path) -> Result<(), CliError> {
+    let ks = [1.0, 2.0, 4.0, 8.0, 50.0, f64::INFINITY];
+    let skews = [0.0, 0.5, 0.9];
+    let aspects = [0.5, 1.0, 2.0, 4.0];
+    let mus = [0.4, 0.8, 1.2];
+    let mut sets = Vec::new();
+    for &k in &ks {
+        for &s in &skews {
+            for &a in &aspects {
+                for &mu in &mus {
+                    sets.push((k, s, a, mu));
+                }
+            }
+        }
+    }
+    let b = bar(sets.len() as u64, "parameter sets");
+    let rows: Vec<Result<String, String>> = sets
+        .par_iter()
+        .map(|&(k, s, a, mu)| {
+            let skew = (s > 0.0).then_some((s, 1.1, s / 2.0));
+            let model = FlsModel::<f64>::new(FlsConfig {
+                shape: Shape::Rect { aspect: a },
+                k,
+                skew,
+                order: QuadratureOrder::DEFAULT,
+            })
+            .map_err(|e| e.to_string())?;
+            let table = FlsTable::<f64, 129>::sweep(&model, 128).map_err(|e| e.to_string())?;
+            let gap = RadialGap::find(&model, &table);
+            // The force a contact of fixed size (γ = 0, a = l/aspect with l = 10 mm) needs
+            // for 1 N and 5 mN·m with s = 1.3, by the exact surface.
+            let cfg = ControllerConfig {
+                mu,
+                shape: FingerShape::Rect,
+                k,
+                skew: skew.map(|(d, al, h)| SkewParams {
+                    delta_over_a: d,
+                    alpha: al,
+                    locus_over_a: h,
+                }),
+                gamma: 0.0,
+                c_m_per_n_gamma: 0.01 / a,
+                mode: Mode::Table,
+                ..ControllerConfig::default()
+            };
+            let n_req = Controller::<f64>::new(cfg)
+                .map_err(|e| e.to_string())?
+                .required_force(1.0, 0.005, 1.3)
+                .map_or(f64::NAN, |s| s.force_n);
+            b.inc(1);
+            Ok(format!(
+                "{k},{s},{a},{mu},{},{},{},{n_req}",
+                model.pitch(),
+                gap.max_relative_gap,
+                gap.max_outside
+            ))
+        })
+        .collect();
+    b.finish_and_clear();
+    let mut csv = String::from(
+        "k,skew_delta_over_a,aspect,mu,pitch,max_relative_gap,max_outside,n_req_1n_5mnm_n\n",
+    );
+    for r in rows {
+        csv.push_str(&r.map_err(CliError::Failed)?);
+        csv.push('\n');
+    }
+    let path = out.join("sweep.csv");
+    write(&path, csv.as_bytes())?;
+    println!(
+        "wrote {} ({} parameter sets, in parallel on {} threads)",
+        path.display(),
+        sets.len(),
+        rayon::current_num_threads()
+    );
+    Ok(())
+}
+
+/// Runs `host-sim tables`.
+pub fn run(args: &TablesArgs) -> Result<(), CliError> {
+    if let Some(TablesAction::Verify { file }) = &args.action {
+        return verify(file);
+    }
+    let out = args
+        .out
+        .as_ref()
+        .ok_or_else(|| usage("--out: required (the directory to write into)"))?;
+    export(args, out)?;
+    if args.plot {
+        plot(out)?;
+    }
+    if args.sweep {
+        sweep(out)?;
+    }
+    Ok(())
+}

@@ -140,6 +140,14 @@ fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
 
 /// Validates the arguments into a limit-surface configuration.
 fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
+    // The surface's moment scale grows like l/a: beyond these the ellipse fit's fourth
+    // powers overflow f32 (and, far out, f64).
+    if args.aspect.is_finite() && !(1e-6..=1e6).contains(&args.aspect) {
+        return Err(CliError::Usage(format!(
+            "--aspect: {} is out of range, expected 1e-6 <= aspect <= 1e6",
+            args.aspect
+        )));
+    }
     let order = QuadratureOrder::new(args.order).map_err(usage)?;
     let shape = match args.shape {
         ShapeArg::Rect => Shape::Rect {

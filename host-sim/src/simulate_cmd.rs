@@ -156,6 +156,13 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         let text = std::fs::read_to_string(p)
             .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
         let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
+        // Settings are checked here, before any run, so a bad one is a usage error.
+        crate::sim::effects::Pipeline::build(&scene, Some(&text))
+            .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
+        let cfg = crate::sim::run::controller_config(&scene)
+            .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
+        softgrip::controller::Controller::<f32>::new(cfg)
+            .map_err(|e| CliError::Usage(format!("{}: controller: {e}", p.display())))?;
         loaded.push((scene, text));
     }
     std::fs::create_dir_all(&args.out)

@@ -239,6 +239,16 @@ impl<T: Real> Capacity<T> {
         if cfg.mode == Mode::Table {
             cap.build_shapes(cfg, &model, &contact, varying)?;
         }
+        // The grid as stored in `T` must itself be valid (increasing finite forces,
+        // positive finite arms and radii): a configuration valid in f64 can round to
+        // zeros or infinities in f32.
+        if Self::from_tables(cfg, &cap.tables()).is_err() {
+            return Err(ConfigError::OutOfRange {
+                param: "n_min_n",
+                value: cfg.n_min_n,
+                expected: "forces and contact sizes the tick's precision can represent",
+            });
+        }
         Ok(cap)
     }
 

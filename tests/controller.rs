@@ -695,3 +695,31 @@ fn solves_stay_far_below_the_iteration_cap() {
         );
     }
 }
+
+/// A timer-driven loop calls `idle` when nothing arrived: silence then counts toward the
+/// stale timeout exactly as stale frames do, and a good frame recovers.
+#[test]
+fn idle_ticks_detect_a_silent_sensor() {
+    let cfg = ControllerConfig::default();
+    let mut c = Controller::<f32>::new(cfg).unwrap();
+    for t in 1..=100u64 {
+        c.tick(&meas(2.0, 0.005, 4.0, t * 1000));
+    }
+    let held = c.command_n();
+    let stale_ticks = (cfg.stale_timeout_s / cfg.tick_period_s).round() as usize;
+    for _ in 0..stale_ticks - 1 {
+        let o = c.idle();
+        assert_eq!(o.status, Status::StaleInput);
+        assert_eq!(o.command_n, held);
+        assert!(!o.fault_active);
+    }
+    let o = c.idle();
+    assert!(o.fault_active);
+    for _ in 0..5000 {
+        c.idle();
+    }
+    assert_eq!(c.command_n(), cfg.fault_force_n as f32);
+    let o = c.tick(&meas(2.0, 0.005, 4.0, 10_000_000));
+    assert_eq!(o.status, Status::Ok);
+    assert!(!o.fault_active);
+}

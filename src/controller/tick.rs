@@ -250,6 +250,20 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             return self.good_tick(m);
         };
+        self.bad_tick(status)
+    }
+
+    /// A tick with no measurement at all: call it once per tick period when the sensor
+    /// (or the link) delivered nothing, from a timer-driven loop. It counts like a stale
+    /// input (`StaleInput`): the command holds, and once no good measurement has arrived
+    /// for the stale timeout it moves to the fault force. This is how a silent sensor or
+    /// link is detected; a loop that only ticks on arriving frames never calls it, and
+    /// then holds its command through silence. Cost: a few comparisons.
+    pub fn idle(&mut self) -> TickOutput<T> {
+        self.bad_tick(Status::StaleInput)
+    }
+
+    fn bad_tick(&mut self, status: Status) -> TickOutput<T> {
         self.bad_ticks = self.bad_ticks.saturating_add(1);
         let fault_active = self.bad_ticks >= self.stale_ticks;
         if fault_active {

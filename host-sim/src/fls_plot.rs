@@ -17,16 +17,8 @@ pub struct Curve {
     pub dashed: bool,
 }
 
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(23, 190, 207),
-];
+/// The simulator's run colours, so that every plot of the project looks alike.
+const PALETTE: [RGBColor; 8] = crate::sim::report::RUN_COLOURS;
 
 /// Draws `curves` into an SVG at `path`. Dashed curves take the colour of the solid curve
 /// before them (a surface and its ellipse share a colour).

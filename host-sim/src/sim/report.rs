@@ -52,7 +52,7 @@ const MAX_SURFACE_AXIS: f64 = 1.0e6;
 
 /// Run colours (the "tab10" palette without its red and grey, which mark slip and the
 /// tangential load).
-const RUN_COLOURS: [RGBColor; 8] = [
+pub(crate) const RUN_COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),

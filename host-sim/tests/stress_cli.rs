@@ -572,18 +572,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
             lines[i] = String::from_utf8_lossy(&bytes).into_owned();
         }
         6 => {
-            let effect = rng.pick(&[
-                "gravity",
-                "disturbance",
-                "sensor_noise",
-                "sensor_faults",
-                "link_latency",
-                "link_faults",
-                "actuator",
-                "creep",
-                "partial_slip",
-                "skewed_pressure",
-            ]);
+            let effect = rng.pick(&host_sim::sim::effects::NAMES);
             lines.push(format!("[effect.{effect}]"));
             let key = rng.pick(&[
                 "drop_prob",

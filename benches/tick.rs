@@ -26,6 +26,7 @@ fn loads<T: Real>() -> Vec<Measurement<T>> {
                 torsional_moment_nm: T::of(0.01 * scale * (1.0 + (1.7 * phase).sin())),
                 normal_force_n: T::of(2.0 + scale),
                 timestamp_us: 0,
+                slip: Default::default(),
             }
         })
         .collect()
@@ -67,6 +68,7 @@ fn bench_smooth_tick(c: &mut Criterion, name: &str, mode: Mode) {
                 torsional_moment_nm: 0.01 * (1.0 + phase.cos()),
                 normal_force_n: 4.0,
                 timestamp_us: 0,
+                slip: Default::default(),
             }
         })
         .collect();

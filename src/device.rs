@@ -291,6 +291,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             torsional_moment_nm: frame.torsional_moment_nm,
             normal_force_n: frame.normal_force_n,
             timestamp_us: frame.timestamp_us,
+            slip: frame.slip,
         };
         let start = clock.now();
         let out = ctl.tick(&m);
@@ -314,6 +315,8 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             status: out.status,
             fault_active: out.fault_active,
             tick_cost: cost,
+            mu_estimate: out.mu_estimate,
+            margin: out.margin,
         })
     }
 

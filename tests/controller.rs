@@ -445,6 +445,7 @@ fn meas(f: f32, m: f32, n: f32, t: u64) -> Measurement<f32> {
         torsional_moment_nm: m,
         normal_force_n: n,
         timestamp_us: t,
+        slip: Default::default(),
     }
 }
 
@@ -558,6 +559,7 @@ fn the_micromath_backend_costs_at_most_a_few_per_cent_of_the_command() {
             torsional_moment_nm: 0.004 * load * (1.0 + (3.1 * phase).sin()),
             normal_force_n: 3.0,
             timestamp_us: i + 1,
+            slip: Default::default(),
         };
         a.reset();
         b.reset();
@@ -640,6 +642,7 @@ proptest! {
                 torsional_moment_nm: v(mz, 0.3),
                 normal_force_n: v(nz, 20.0),
                 timestamp_us: t,
+                slip: Default::default(),
             };
             let o = c.tick(&m);
             prop_assert!(o.command_n.is_finite());

@@ -135,6 +135,7 @@ fn exercise(cfg: ControllerConfig, ticks: &[(u32, u32, u32, u32, u16)]) {
             torsional_moment_nm: f32::from_bits(mz),
             normal_force_n: f32::from_bits(nz),
             timestamp_us: t,
+            slip: Default::default(),
         };
         let o = c.tick(&m);
         assert!(o.command_n.is_finite() && o.command_n >= lo && o.command_n <= hi);
@@ -237,6 +238,7 @@ fn arb_measurement_frame() -> impl Strategy<Value = SensorFrame> {
             } else {
                 plausible / 2.0
             },
+            slip: Default::default(),
         })
 }
 
@@ -371,6 +373,7 @@ fn values_beyond_f32_are_accepted() {
             torsional_moment_nm: 0.004,
             normal_force_n: 3.0,
             timestamp_us: 1,
+            slip: Default::default(),
         });
         assert!(o.required_n.is_finite() && o.n_slip_n.is_finite(), "{o:?}");
     }

@@ -304,6 +304,7 @@ fn stream<T: Real, M: TickMath<T>>(
             torsional_moment_nm: v(mz, cfg.moment_range_nm),
             normal_force_n: v(nz, n_span),
             timestamp_us: t,
+            slip: Default::default(),
         };
         let o = c.tick(&m);
         prop_assert!(

@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use proptest::prelude::*;
 use serde::ser::SerializeTuple;
 use serde::Serialize;
-use softgrip::controller::{ControllerConfig, FingerShape, Mode, SkewParams, Status};
+use softgrip::controller::{ControllerConfig, FingerShape, Mode, SkewParams, SlipSignal, Status};
 use softgrip::protocol::{
     cobs_max_len, encode, fnv1a_32, CommandFrame, CostUnit, DecoderCounters, DefaultFrameDecoder,
     FrameDecoder, FrameError, Reply, Request, SensorFrame, Stats, WireConfigError, CRC, CRC_LEN,
@@ -159,6 +159,7 @@ fn sensor(seq: u32) -> SensorFrame {
         tangential_force_n: [0.5 + seq as f32, -0.25],
         torsional_moment_nm: 0.01,
         normal_force_n: 2.0,
+        slip: Default::default(),
     }
 }
 
@@ -219,6 +220,8 @@ fn all_replies() -> Vec<Reply> {
             status: Status::Ok,
             fault_active: false,
             tick_cost: 12_345,
+            margin: Default::default(),
+            mu_estimate: Default::default(),
         }),
         Reply::Command(CommandFrame {
             seq: u32::MAX,
@@ -228,6 +231,8 @@ fn all_replies() -> Vec<Reply> {
             status: Status::StaleInput,
             fault_active: true,
             tick_cost: 0,
+            margin: Default::default(),
+            mu_estimate: Default::default(),
         }),
         Reply::Stats(stats_sample()),
         Reply::NotConfigured { seq: 5 },
@@ -318,6 +323,8 @@ fn largest_requests() -> Vec<Request> {
         quadrature_order: u16::MAX,
         table_samples: u16::MAX,
         aspect_count: u16::MAX,
+        actuator_lag_s: Default::default(),
+        actuator_slew_n_per_s: Default::default(),
     };
     vec![
         Request::Hello {
@@ -331,6 +338,7 @@ fn largest_requests() -> Vec<Request> {
             tangential_force_n: [f32::MAX, f32::MIN],
             torsional_moment_nm: f32::NAN,
             normal_force_n: f32::NEG_INFINITY,
+            slip: Default::default(),
         }),
         Request::GetStats,
         Request::ResetStats,
@@ -358,6 +366,8 @@ fn largest_replies() -> Vec<Reply> {
             status: Status::StaleInput,
             fault_active: true,
             tick_cost: u32::MAX,
+            margin: Default::default(),
+            mu_estimate: Default::default(),
         }),
         Reply::Stats(Stats {
             frames_received: u32::MAX,
@@ -394,8 +404,8 @@ fn max_message_len_is_the_largest_encoding_and_frames_fit() {
     }
     // Tight: MAX_MESSAGE_LEN is exactly the largest message, so it moves with them.
     assert_eq!(largest, MAX_MESSAGE_LEN);
-    assert_eq!(MAX_MESSAGE_LEN, 160);
-    assert_eq!(MAX_FRAME_LEN, 166);
+    assert_eq!(MAX_MESSAGE_LEN, 176);
+    assert_eq!(MAX_FRAME_LEN, 182);
     assert_eq!(usize::from(MAX_FRAME_LEN_U16), MAX_FRAME_LEN);
 
     let mut longest_frame = 0;
@@ -510,6 +520,7 @@ fn non_finite_floats_travel_bit_for_bit() {
         tangential_force_n: [f32::NAN, weird_nan],
         torsional_moment_nm: f32::INFINITY,
         normal_force_n: neg_nan,
+        slip: Default::default(),
     };
     let mut dec = DefaultFrameDecoder::new();
     let got = push_all::<Request, _>(&mut dec, &frame_of(&Request::Sensor(s)));
@@ -553,7 +564,7 @@ fn hello_carries_this_builds_constants() {
         Reply::Hello {
             version: PROTOCOL_VERSION,
             schema_key: SCHEMA_KEY,
-            max_frame_len: 166
+            max_frame_len: 182
         }
     );
 }
@@ -992,6 +1003,9 @@ const SCHEMA_HISTORY: &[(u32, u32)] = &[
     (0x3fd0_aa18, 0x0827_bcdf),
     // Protocol 2: tick_cost in CommandFrame, stack_peak_bytes in Stats, Shutdown/ShuttingDown.
     (0xc3d4_8d21, 0x7281_1450),
+    // Protocol 3: the slip signal in SensorFrame, the μ estimate and margin in
+    // CommandFrame, the actuator's lag and slew in ControllerConfig.
+    (0xaa5e_1602, 0x68f5_3718),
 ];
 
 /// A fixed value of every variant, encoded: it moves whenever the encoding does.
@@ -1023,6 +1037,8 @@ fn golden_digest() -> u32 {
         quadrature_order: 28,
         table_samples: 48,
         aspect_count: 8,
+        actuator_lag_s: Default::default(),
+        actuator_slew_n_per_s: Default::default(),
     };
     let requests = [
         Request::Hello {
@@ -1072,6 +1088,8 @@ fn golden_digest() -> u32 {
             status,
             fault_active: i % 2 == 1,
             tick_cost: 1_000 + 300 * i as u32,
+            margin: Default::default(),
+            mu_estimate: Default::default(),
         }));
     }
     for cost_unit in units {
@@ -1125,6 +1143,8 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             quadrature_order: _,
             table_samples: _,
             aspect_count: _,
+            actuator_lag_s: _,
+            actuator_slew_n_per_s: _,
         }) => {
             match shape {
                 FingerShape::Rect | FingerShape::Disc => {}
@@ -1145,7 +1165,10 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             tangential_force_n: [_, _],
             torsional_moment_nm: _,
             normal_force_n: _,
-        }) => {}
+            slip,
+        }) => match slip {
+            SlipSignal::None | SlipSignal::Incipient | SlipSignal::Gross => {}
+        },
     }
     match rep {
         Reply::Hello {
@@ -1168,6 +1191,8 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             status,
             fault_active: _,
             tick_cost: _,
+            mu_estimate: _,
+            margin: _,
         }) => match status {
             Status::Ok | Status::Saturated | Status::SensorFault | Status::StaleInput => {}
         },
@@ -1244,6 +1269,7 @@ fn arb_sensor() -> impl Strategy<Value = SensorFrame> {
                     tangential_force_n,
                     torsional_moment_nm,
                     normal_force_n,
+                    slip: Default::default(),
                 }
             },
         )
@@ -1288,6 +1314,8 @@ fn arb_config() -> impl Strategy<Value = ControllerConfig> {
             quadrature_order: n[1],
             table_samples: n[2],
             aspect_count: n[3],
+            actuator_lag_s: Default::default(),
+            actuator_slew_n_per_s: Default::default(),
         })
 }
 
@@ -1361,6 +1389,8 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
                         status,
                         fault_active,
                         tick_cost,
+                        margin: Default::default(),
+                        mu_estimate: Default::default(),
                     })
                 }
             ),

@@ -735,6 +735,7 @@ fn meas(f: f64, m: f64, n: f64, t: u64) -> Measurement<f64> {
         torsional_moment_nm: m,
         normal_force_n: n,
         timestamp_us: t,
+        slip: Default::default(),
     }
 }
 

@@ -41,6 +41,7 @@ fn same_ticks(a: &mut Controller<f32>, b: &mut Controller<f32>) {
             torsional_moment_nm: 0.02 * (1.3 * p).sin(),
             normal_force_n: 2.0 + p.cos(),
             timestamp_us: 1000 * i + 1,
+            slip: Default::default(),
         };
         let (x, y) = (a.tick(&m), b.tick(&m));
         assert_eq!(x.command_n.to_bits(), y.command_n.to_bits(), "tick {i}");

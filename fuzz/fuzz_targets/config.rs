@@ -65,6 +65,7 @@ fuzz_target!(|data: &[u8]| {
             torsional_moment_nm: word(2),
             normal_force_n: word(3),
             timestamp_us: i as u64 * 1000,
+            slip: Default::default(),
         });
         assert!(
             o.command_n.is_finite() && o.command_n >= lo && o.command_n <= hi,

@@ -170,7 +170,8 @@ pub fn rust_source(cfg: &ControllerConfig, t: &Tables<'_, f32>) -> String {
          n_min_n: {}, n_max_n: {}, rise_rate_n_per_s: {}, fall_rate_n_per_s: {},\n    \
          tick_period_s: {}, stale_timeout_s: {}, fault_force_n: {},\n    \
          force_range_n: {}, moment_range_nm: {}, mode: softgrip::controller::Mode::{:?},\n    \
-         force_nodes: {}, quadrature_order: {}, table_samples: {}, aspect_count: {},\n}};\n",
+         force_nodes: {}, quadrature_order: {}, table_samples: {}, aspect_count: {},\n    \
+         actuator_lag_s: {}, actuator_slew_n_per_s: {},\n}};\n",
         f64_lit(cfg.mu),
         cfg.shape,
         f64_lit(cfg.k),
@@ -191,7 +192,9 @@ pub fn rust_source(cfg: &ControllerConfig, t: &Tables<'_, f32>) -> String {
         cfg.force_nodes,
         cfg.quadrature_order,
         cfg.table_samples,
-        cfg.aspect_count
+        cfg.aspect_count,
+        f64_lit(cfg.actuator_lag_s),
+        f64_lit(cfg.actuator_slew_n_per_s)
     );
     let array = |s: &mut String, name: &str, v: &[f32]| {
         let items: Vec<String> = v.iter().map(|&x| f32_lit(x)).collect();

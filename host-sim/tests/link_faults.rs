@@ -67,6 +67,7 @@ fn grasp(i: u32) -> SensorFrame {
         tangential_force_n: [(lift + shake) as f32, (0.3 * shake) as f32],
         torsional_moment_nm: twist as f32,
         normal_force_n: (3.0 + lift) as f32,
+        slip: Default::default(),
     }
 }
 
@@ -76,6 +77,7 @@ fn measurement(f: &SensorFrame) -> Measurement<f32> {
         torsional_moment_nm: f.torsional_moment_nm,
         normal_force_n: f.normal_force_n,
         timestamp_us: f.timestamp_us,
+        slip: Default::default(),
     }
 }
 

@@ -17,6 +17,7 @@ fn frames() -> Vec<SensorFrame> {
                 tangential_force_n: [3.0 * p.sin().abs(), 0.5 * p.cos()],
                 torsional_moment_nm: 0.01 * (0.7 * p).sin(),
                 normal_force_n: 3.0 + p.cos(),
+                slip: Default::default(),
             };
             // Hostile frames among the good ones.
             match i % 50 {
@@ -52,6 +53,7 @@ fn same_as_direct<M: TickMath<f32> + Send + 'static>(mode: Mode) {
             torsional_moment_nm: f.torsional_moment_nm,
             normal_force_n: f.normal_force_n,
             timestamp_us: f.timestamp_us,
+            slip: Default::default(),
         });
         assert_eq!(cmd.seq, f.seq);
         assert_eq!(cmd.normal_force_n.to_bits(), want.command_n.to_bits());

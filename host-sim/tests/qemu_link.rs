@@ -47,6 +47,7 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
                 tangential_force_n: [3.0 * p.sin().abs(), 0.5 * p.cos()],
                 torsional_moment_nm: 0.01 * (0.7 * p).sin(),
                 normal_force_n: if i % 97 == 5 { f32::NAN } else { 3.0 + p.cos() },
+                slip: Default::default(),
             };
             let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
                 panic!("no command")
@@ -56,6 +57,7 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
                 torsional_moment_nm: f.torsional_moment_nm,
                 normal_force_n: f.normal_force_n,
                 timestamp_us: f.timestamp_us,
+                slip: Default::default(),
             });
             assert_eq!(
                 cmd.normal_force_n.to_bits(),
@@ -133,6 +135,7 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
             tangential_force_n: [2.0 * p.sin().abs(), 0.4 * p.cos()],
             torsional_moment_nm: 0.012 * (0.9 * p).sin(),
             normal_force_n: 3.0,
+            slip: Default::default(),
         };
         let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
             panic!()
@@ -142,6 +145,7 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
             torsional_moment_nm: f.torsional_moment_nm,
             normal_force_n: f.normal_force_n,
             timestamp_us: f.timestamp_us,
+            slip: Default::default(),
         });
         assert_eq!(
             cmd.normal_force_n.to_bits(),

@@ -170,6 +170,7 @@ fn main() {
         tangential_force_n: [1.0, 0.0],
         torsional_moment_nm: 0.004,
         normal_force_n: 3.0,
+        slip: Default::default(),
     };
     let _ = device_sensor(&mut dev, black_box(frame));
     n += device_poll(&mut dev, &bytes);

@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 /// The blob's magic bytes.
 pub const BLOB_MAGIC: [u8; 4] = *b"SGTB";
 /// The blob format's version.
-pub const BLOB_VERSION: u16 = 1;
+pub const BLOB_VERSION: u16 = 2;
 const HEADER_LEN: usize = 10;
 /// The largest blob: header, the largest body, CRC.
 pub const BLOB_MAX_LEN: usize = 3400;

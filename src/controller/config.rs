@@ -128,11 +128,20 @@ pub struct ControllerConfig {
     /// Aspect ratios `l/a` in table mode's grid for the rectangle with `γ > 0` (at most
     /// [`MAX_ASPECTS`](super::MAX_ASPECTS); the disc and `γ = 0` need one).
     pub aspect_count: u16,
+    /// Time constant of the actuator that applies the command [s], `0 ≤ τ ≤ 1`. With
+    /// `τ > 0` the controller commands ahead of a rising load by about `τ` (see
+    /// [`lead`](super::lead)); 0 turns the lead off.
+    pub actuator_lag_s: f64,
+    /// Fastest rise of the actuator itself [N/s] (`> 0`; `f64::INFINITY` when it is not
+    /// slew-limited). Planned into the lead horizon so that a slew-limited actuator
+    /// starts early enough; unused when `actuator_lag_s = 0`.
+    pub actuator_slew_n_per_s: f64,
 }
 
 impl Default for ControllerConfig {
     /// A hemicylindrical silicone fingertip in the paper's range: `μ = 0.8`, `k = 2`, no
-    /// skew, `a = 2.5 mm · N^{1/2}`, `l = 10 mm`, `s = 1.3`, 0.2–20 N, 1 kHz, ellipse mode.
+    /// skew, `a = 2.5 mm · N^{1/2}`, `l = 10 mm`, `s = 1.3`, 0.2–20 N, 1 kHz, ellipse mode,
+    /// no actuator lead.
     fn default() -> Self {
         Self {
             mu: 0.8,
@@ -157,6 +166,8 @@ impl Default for ControllerConfig {
             quadrature_order: 28,
             table_samples: 48,
             aspect_count: 8,
+            actuator_lag_s: 0.0,
+            actuator_slew_n_per_s: f64::INFINITY,
         }
     }
 }
@@ -235,6 +246,18 @@ impl ControllerConfig {
             self.moment_range_nm,
             self.moment_range_nm > 0.0 && self.moment_range_nm <= 1e9,
             "0 < moment_range_nm <= 1e9",
+        )?;
+        check(
+            "actuator_lag_s",
+            self.actuator_lag_s,
+            (0.0..=1.0).contains(&self.actuator_lag_s),
+            "0 <= actuator_lag_s <= 1",
+        )?;
+        check(
+            "actuator_slew_n_per_s",
+            self.actuator_slew_n_per_s,
+            self.actuator_slew_n_per_s > 0.0,
+            "actuator_slew_n_per_s > 0 (inf when not slew-limited)",
         )?;
         QuadratureOrder::new(usize::from(self.quadrature_order)).map(|_| ())
     }

@@ -3,7 +3,9 @@
 pub mod blob;
 mod capacity;
 mod config;
+pub mod lead;
 mod math;
+pub mod slip;
 mod status;
 mod tick;
 
@@ -13,5 +15,6 @@ pub use capacity::{
 };
 pub use config::{ControllerConfig, FingerShape, Mode, SkewParams};
 pub use math::{Libm, Micromath, TickMath};
+pub use slip::SlipSignal;
 pub use status::Status;
 pub use tick::{Controller, FromTablesError, Measurement, TickOutput};

@@ -2,7 +2,9 @@
 
 use crate::controller::capacity::{Capacity, Solution, TableError, Tables};
 use crate::controller::config::ControllerConfig;
+use crate::controller::lead::Lead;
 use crate::controller::math::{Libm, TickMath};
+use crate::controller::slip::{SlipResponse, SlipSignal};
 use crate::controller::status::Status;
 use crate::error::ConfigError;
 use crate::real::Real;
@@ -39,6 +41,8 @@ pub struct Measurement<T> {
     pub normal_force_n: T,
     /// When the reading was taken [µs], on the sensor's clock. Must increase.
     pub timestamp_us: u64,
+    /// What a tactile slip sensor saw ([`SlipSignal::None`] without one).
+    pub slip: SlipSignal,
 }
 
 /// What one tick decided. Every number is finite, always.
@@ -61,6 +65,11 @@ pub struct TickOutput<T> {
     pub fault_active: bool,
     /// Illinois iterations spent in this tick (both solves), for cost accounting.
     pub iterations: u8,
+    /// The friction coefficient the controller now believes: the configured `μ` until a
+    /// slip signal lowers it (see [`slip`](super::slip)).
+    pub mu_estimate: T,
+    /// The margin multiplying the safety factor: 1 until a slip signal raises it.
+    pub margin: T,
 }
 
 /// The slip-prevention controller.
@@ -100,6 +109,8 @@ pub struct Controller<T, M = Libm> {
     force_range: T,
     moment_range: T,
     stale_ticks: u32,
+    lead: Lead<T>,
+    slip_response: SlipResponse<T>,
     // State.
     command: T,
     last: Option<TickOutput<T>>,
@@ -154,6 +165,12 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             } else {
                 ticks.max(1.0) as u32
             },
+            lead: Lead::new(
+                config.actuator_lag_s,
+                config.actuator_slew_n_per_s,
+                config.tick_period_s,
+            ),
+            slip_response: SlipResponse::new(config.mu, config.tick_period_s),
             command: T::of(config.n_min_n),
             last: None,
             last_good_us: None,
@@ -187,6 +204,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.last_good_us = None;
         self.bad_ticks = 0;
         self.slip_node = 0;
+        self.lead.reset();
+        self.slip_response.reset();
     }
 
     /// `N_req` for a load, without touching the controller's state: the pure rule of
@@ -278,6 +297,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             status,
             fault_active,
             iterations: 0,
+            mu_estimate: self.slip_response.mu_estimate(),
+            margin: self.slip_response.margin(),
         }
     }
 
@@ -285,30 +306,49 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.last_good_us = Some(m.timestamp_us);
         self.bad_ticks = 0;
         let [fx, fy] = m.tangential_force_n;
-        let f = M::sqrt(fx * fx + fy * fy) * self.inv_mu;
-        let mz = m.torsional_moment_nm.abs() * self.inv_mu;
+        let ft = M::sqrt(fx * fx + fy * fy);
+        let mn = m.torsional_moment_nm.abs();
+        let mut inv_mu = self.slip_response.inv_mu_estimate();
+        let (mut f, mut mz) = (ft * inv_mu, mn * inv_mu);
+        let mut utilisation = self.capacity.utilisation::<M>(f, mz, m.normal_force_n);
+        let stepped = self.slip_response.observe(m.slip, utilisation);
+        if stepped && self.slip_response.inv_mu_estimate() != inv_mu {
+            inv_mu = self.slip_response.inv_mu_estimate();
+            (f, mz) = (ft * inv_mu, mn * inv_mu);
+            utilisation = self.capacity.utilisation::<M>(f, mz, m.normal_force_n);
+        }
+        let safety = self.slip_response.safety(self.safety);
         let slip = self
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);
         self.slip_node = slip.node;
         let req = self
             .capacity
-            .required_force_scaled::<M>(f, mz, &slip, self.safety);
+            .required_force_scaled::<M>(f, mz, &slip, safety);
         let status = if req.force_n > self.n_max {
             Status::Saturated
         } else {
             Status::Ok
         };
-        let target = req.force_n.max(self.n_min).min(self.n_max);
-        self.command = self.rate_limited(target);
+        let ahead = self.lead.target(req.force_n.min(self.n_max));
+        let target = ahead.max(self.n_min).min(self.n_max);
+        let limited = self.rate_limited(target);
+        // The emergency rise: on a slip signal the command goes to its new target at once.
+        self.command = if stepped {
+            limited.max(target)
+        } else {
+            limited
+        };
         let out = TickOutput {
             command_n: self.command,
             required_n: req.force_n,
             n_slip_n: slip.force_n,
-            utilisation: self.capacity.utilisation::<M>(f, mz, m.normal_force_n),
+            utilisation,
             status,
             fault_active: false,
             iterations: slip.iterations.saturating_add(req.iterations),
+            mu_estimate: self.slip_response.mu_estimate(),
+            margin: self.slip_response.margin(),
         };
         self.last = Some(out);
         out

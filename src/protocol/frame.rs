@@ -23,9 +23,9 @@ pub const CRC_LEN: usize = 4;
 
 /// The longest postcard encoding of any [`Request`](super::Request) or
 /// [`Reply`](super::Reply): `Request::Configure` with `skew: Some(..)` and the widest
-/// varints (160 bytes). `tests/protocol.rs` checks it against the largest values of every
+/// varints (176 bytes). `tests/protocol.rs` checks it against the largest values of every
 /// variant, so it cannot silently go stale.
-pub const MAX_MESSAGE_LEN: usize = 160;
+pub const MAX_MESSAGE_LEN: usize = 176;
 
 /// The greatest COBS encoding of `n` bytes, without the delimiter: one code byte per
 /// started run of 254 bytes, plus one (the classic `n + n/254 + 1` bound, which also
@@ -35,7 +35,7 @@ pub const fn cobs_max_len(n: usize) -> usize {
 }
 
 /// The longest frame on the wire, delimiter included:
-/// `cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1` = 166 bytes. An encode buffer of this size
+/// `cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1` = 182 bytes. An encode buffer of this size
 /// always suffices.
 pub const MAX_FRAME_LEN: usize = cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1;
 

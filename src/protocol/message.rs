@@ -10,12 +10,12 @@ use heapless::String;
 use serde::{Deserialize, Serialize};
 
 use super::frame::MAX_FRAME_LEN;
-use crate::controller::{ControllerConfig, Status};
+use crate::controller::{ControllerConfig, SlipSignal, Status};
 use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
 /// encoding changing (the [`SCHEMA_KEY`] follows the encoding by itself).
-pub const PROTOCOL_VERSION: u16 = 2;
+pub const PROTOCOL_VERSION: u16 = 3;
 
 /// Every message, field and type on the wire, in order, plus the frame format. Its
 /// FNV-1a hash is [`SCHEMA_KEY`].
@@ -37,9 +37,10 @@ Reply{Hello{version:u16,schema_key:u32,max_frame_len:u16},\
 Configured(Result<(),WireConfigError>),Command(CommandFrame),Stats(Stats),\
 NotConfigured{seq:u32},ShuttingDown{code:u8}};\
 SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment_nm:f32,\
-normal_force_n:f32};\
+normal_force_n:f32,slip:SlipSignal};\
+SlipSignal{None,Incipient,Gross};\
 CommandFrame{seq:u32,normal_force_n:f32,n_slip_n:f32,utilisation:f32,status:Status,\
-fault_active:bool,tick_cost:u32};\
+fault_active:bool,tick_cost:u32,mu_estimate:f32,margin:f32};\
 Status{Ok,Saturated,SensorFault,StaleInput};\
 Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
 ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
@@ -50,7 +51,8 @@ ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
 c_m_per_n_gamma:f64,gamma:f64,half_length_m:f64,safety:f64,n_min_n:f64,n_max_n:f64,\
 rise_rate_n_per_s:f64,fall_rate_n_per_s:f64,tick_period_s:f64,stale_timeout_s:f64,\
 fault_force_n:f64,force_range_n:f64,moment_range_nm:f64,mode:Mode,force_nodes:u16,\
-quadrature_order:u16,table_samples:u16,aspect_count:u16};\
+quadrature_order:u16,table_samples:u16,aspect_count:u16,actuator_lag_s:f64,\
+actuator_slew_n_per_s:f64};\
 FingerShape{Rect,Disc};\
 SkewParams{delta_over_a:f64,alpha:f64,locus_over_a:f64};\
 Mode{Ellipse,Table}";
@@ -75,7 +77,7 @@ pub const fn fnv1a_32(bytes: &[u8]) -> u32 {
 ///
 /// Floats travel bit for bit: NaN and infinities arrive as sent, and it is the controller
 /// that rejects them.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SensorFrame {
     /// Sequence number, chosen by the sender; echoed in the [`CommandFrame`].
@@ -88,6 +90,8 @@ pub struct SensorFrame {
     pub torsional_moment_nm: f32,
     /// Measured normal force \[N\].
     pub normal_force_n: f32,
+    /// What a tactile slip sensor saw ([`SlipSignal::None`] without one).
+    pub slip: SlipSignal,
 }
 
 /// The controller's answer to one [`SensorFrame`] (device → host inside
@@ -109,6 +113,10 @@ pub struct CommandFrame {
     pub fault_active: bool,
     /// What this tick cost, in the [`CostUnit`] of the device's [`Stats`].
     pub tick_cost: u32,
+    /// The friction coefficient the controller now believes (lowered by slip signals).
+    pub mu_estimate: f32,
+    /// The margin multiplying the safety factor (raised by slip signals, ≥ 1).
+    pub margin: f32,
 }
 
 /// The unit of the tick costs in [`Stats`]: whatever the device can measure.

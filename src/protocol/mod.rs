@@ -10,7 +10,7 @@
 //! ```text
 //! P = postcard(message)                      1 ..= MAX_MESSAGE_LEN (160) bytes
 //! C = CRC-32/ISCSI(P), little-endian         4 bytes
-//! frame = COBS(P ‖ C) ‖ 0x00                 len(P) + 6 ..= MAX_FRAME_LEN (166) bytes
+//! frame = COBS(P ‖ C) ‖ 0x00                 len(P) + 6 ..= MAX_FRAME_LEN (182) bytes
 //! ```
 //!
 //! * `P` is the [postcard 1.x wire format](https://postcard.jamesmunns.com/wire-format):
@@ -29,7 +29,7 @@
 //!   contains no `0x00`, and is one byte longer than `P ‖ C` (which is at most 164 bytes,
 //!   below COBS's 254-byte run). A single `0x00` ends the frame.
 //!
-//! The longest frame is [`MAX_FRAME_LEN`] = 166 bytes (`Request::Configure` with a skew,
+//! The longest frame is [`MAX_FRAME_LEN`] = 182 bytes (`Request::Configure` with a skew,
 //! 160 + 4 + 1 + 1); [`encode`] never needs a bigger buffer, and a
 //! [`DefaultFrameDecoder`] holds any frame. For example `Request::GetStats` (`P` =
 //! `03`, `C` = `a5 a0 2d 41`) travels as the seven bytes
@@ -96,6 +96,7 @@
 mod frame;
 mod message;
 
+pub use crate::controller::SlipSignal;
 pub use frame::{
     cobs_max_len, encode, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Frames,
     CRC, CRC_LEN, MAX_FRAME_LEN, MAX_MESSAGE_LEN,

@@ -494,6 +494,7 @@ fn measure_grid<T: Real, M: TickMath<T>, P: Real>(
                 torsional_moment_nm: T::of(load.mn),
                 normal_force_n: T::of(load.n_meas),
                 timestamp_us: 1000 * (i as u64 + 1),
+                slip: Default::default(),
             });
             errs.add(o.required_n.to_f64(), load, !table);
         }
@@ -519,6 +520,7 @@ fn timer_grid<T: Real, M: TickMath<T> + 'static, P: Real>(
             torsional_moment_nm: T::of(mn),
             normal_force_n: T::of(n),
             timestamp_us: 0,
+            slip: Default::default(),
         })
         .collect();
     let passes = b.tick_passes;

@@ -88,6 +88,7 @@ fn run_one(link: &mut QemuLink, v: &Variant, loads: usize) -> Result<TargetCost,
             tangential_force_n: [fx as f32, fy as f32],
             torsional_moment_nm: mn as f32,
             normal_force_n: n as f32,
+            slip: Default::default(),
         };
         match link
             .exchange(&Request::Sensor(frame))

@@ -171,6 +171,7 @@ pub fn run_on(
             tangential_force_n: [fx as f32, fy as f32],
             torsional_moment_nm: w.contact_moment_nm() as f32,
             normal_force_n: w.normal_n as f32,
+            slip: Default::default(),
         };
         pipeline.sense(&w, &mut frame);
         let sensed = frame;

@@ -27,10 +27,21 @@ fn rect(mode: Mode, skew: bool) -> ControllerConfig {
 }
 
 /// MODEL.md: disc, γ = 0, ellipse mode: `N_req(s) = s·sqrt((f/μ)² + (m/(μ a pitch))²)`.
-fn disc_closed_form(cfg: &ControllerConfig, f: f64, m: f64, s: f64) -> f64 {
+/// MODEL.md's closed form for the disc at `γ = 0`, ellipse mode, with the controller's
+/// inscribed ellipse `(A, B)` in place of Eq. 10's unit circle.
+fn disc_closed_form(cfg: &ControllerConfig, axes: (f64, f64), f: f64, m: f64, s: f64) -> f64 {
     let pitch = 3.0 * std::f64::consts::PI / 16.0; // k = 2
     let a = cfg.c_m_per_n_gamma;
-    s * ((f / cfg.mu).powi(2) + (m / (cfg.mu * a * pitch)).powi(2)).sqrt()
+    s * ((f / (cfg.mu * axes.0)).powi(2) + (m / (cfg.mu * a * pitch * axes.1)).powi(2)).sqrt()
+}
+
+/// The semi-axes `(A, B)` of a controller's inscribed ellipse (`(1, 1)` in table mode).
+fn axes<T: softgrip::Real>(c: &Controller<T>) -> (f64, f64)
+where
+    softgrip::controller::Libm: softgrip::controller::TickMath<T>,
+{
+    let [sf, sm] = c.capacity().demand_scale();
+    (1.0 / sf.to_f64(), 1.0 / sm.to_f64())
 }
 
 #[test]
@@ -45,7 +56,7 @@ fn disc_at_gamma_zero_matches_the_closed_form_inside_and_outside_the_grid() {
             if f == 0.0 && m == 0.0 {
                 continue;
             }
-            let want = disc_closed_form(&cfg, f, m, cfg.safety);
+            let want = disc_closed_form(&cfg, axes(&c64), f, m, cfg.safety);
             let got = c64.required_force(f, m, cfg.safety).unwrap().force_n;
             let got32 = c32
                 .required_force(f as f32, m as f32, cfg.safety as f32)
@@ -69,7 +80,7 @@ fn disc_at_gamma_zero_matches_the_closed_form_inside_and_outside_the_grid() {
 
 /// The rule evaluated without any grid: bisection in f64 on `N`, with the exact pitch (and,
 /// in table mode, a dense sweep) at `l/a(N)` for every trial `N`.
-fn exact_required(cfg: &ControllerConfig, f: f64, m: f64, s: f64) -> f64 {
+fn exact_required(cfg: &ControllerConfig, axes: (f64, f64), f: f64, m: f64, s: f64) -> f64 {
     let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma).unwrap();
     let holds = |n: f64| {
         let a = contact.half_width_m(n);
@@ -88,7 +99,7 @@ fn exact_required(cfg: &ControllerConfig, f: f64, m: f64, s: f64) -> f64 {
         let x = s * f / (cfg.mu * n);
         let y = s * m / (cfg.mu * n * a);
         match cfg.mode {
-            Mode::Ellipse => (x * x + (y / model.pitch()).powi(2)) <= 1.0,
+            Mode::Ellipse => ((x / axes.0).powi(2) + (y / (model.pitch() * axes.1)).powi(2)) <= 1.0,
             Mode::Table => {
                 let table = FlsTable::<f64, 1025>::sweep(&model, 1024).unwrap();
                 table.utilisation(x, y) <= 1.0
@@ -130,7 +141,7 @@ fn rect_with_growing_contact_tracks_the_exact_rule_in_both_modes() {
         let c = Controller::<f64>::new(cfg).unwrap();
         let mut worst = 0.0f64;
         for &(f, m) in &loads {
-            let want = exact_required(&cfg, f, m, cfg.safety);
+            let want = exact_required(&cfg, axes(&c), f, m, cfg.safety);
             let got = c.required_force(f, m, cfg.safety).unwrap().force_n;
             let rel = (got - want) / want;
             if want < cfg.n_min_n || want > cfg.n_max_n {

@@ -229,14 +229,16 @@ pub fn rust_source(cfg: &ControllerConfig, t: &Tables<'_, f32>) -> String {
          pub fn tables() -> softgrip::controller::Tables<'static, f32> {{\n    \
          softgrip::controller::Tables {{\n        force_n: &FORCE_N,\n        arm_m: &ARM_M,\n        \
          inv_arm_per_m: &INV_ARM_PER_M,\n        aspect_pos: &ASPECT_POS,\n        \
-         inv_radius: &INV_RADIUS,\n    }}\n}}"
+         inv_radius: &INV_RADIUS,\n        demand_scale: [{}, {}],\n    }}\n}}",
+        f32_lit(t.demand_scale[0]),
+        f32_lit(t.demand_scale[1])
     );
     s
 }
 
 /// The bytes the tables occupy in flash as Rust statics.
 pub fn flash_bytes(t: &Tables<'_, f32>) -> usize {
-    4 * (4 * t.force_n.len() + DIRECTIONS * t.inv_radius.len())
+    4 * (4 * t.force_n.len() + DIRECTIONS * t.inv_radius.len() + 2)
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {

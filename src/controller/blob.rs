@@ -8,7 +8,8 @@
 //! 6       4     body length B (little-endian)
 //! 10      B     body: postcard of { config: ControllerConfig (every parameter),
 //!               nodes: u16, shapes: u16, directions: u16, force_n, arm_m,
-//!               inv_arm_per_m, aspect_pos: [f32; nodes], inv_radius: [f32; shapes·directions] }
+//!               inv_arm_per_m, aspect_pos: [f32; nodes], inv_radius: [f32; shapes·directions],
+//!               demand_scale: [f32; 2] }
 //! 10+B    4     CRC-32/ISCSI of bytes 0 .. 10+B (little-endian)
 //! ```
 //!
@@ -45,6 +46,7 @@ struct Body {
     inv_arm_per_m: Vec<f32, MAX_FORCE_NODES>,
     aspect_pos: Vec<f32, MAX_FORCE_NODES>,
     inv_radius: Vec<f32, { MAX_ASPECTS * DIRECTIONS }>,
+    demand_scale: [f32; 2],
 }
 
 /// Why a blob was refused.
@@ -145,6 +147,7 @@ pub fn encode(
         inv_arm_per_m: vec(tables.inv_arm_per_m)?,
         aspect_pos: vec(tables.aspect_pos)?,
         inv_radius,
+        demand_scale: tables.demand_scale,
     };
     let (header, rest) = out
         .split_at_mut_checked(HEADER_LEN)
@@ -257,6 +260,7 @@ impl Blob {
                 .rows
                 .get(..usize::from(self.body.shapes))
                 .unwrap_or(&[]),
+            demand_scale: self.body.demand_scale,
         }
     }
 

@@ -31,7 +31,7 @@ use crate::contact::ContactSize;
 use crate::controller::config::{ControllerConfig, FingerShape, Mode};
 use crate::controller::math::TickMath;
 use crate::error::{check, ConfigError};
-use crate::fls::{FlsConfig, FlsModel, FlsTable};
+use crate::fls::{FlsConfig, FlsModel, FlsTable, InscribedEllipse};
 use crate::quadrature::QuadratureOrder;
 use crate::real::Real;
 
@@ -77,6 +77,10 @@ pub struct Tables<'a, T> {
     /// [`DIRECTIONS`] load directions (table mode; one row for the disc and `γ = 0`; empty
     /// in ellipse mode).
     pub inv_radius: &'a [[T; DIRECTIONS]],
+    /// `(1/A, 1/B)`: what the force and moment demand are multiplied by before the test,
+    /// with `A`, `B` the semi-axes of the ellipse inscribed in the exact surface (ellipse
+    /// mode; `(1, 1)` in table mode).
+    pub demand_scale: [T; 2],
 }
 
 /// Why imported tables were refused.
@@ -143,6 +147,7 @@ pub struct Capacity<T> {
     shapes: usize,
     inv_radius: [[T; DIRECTIONS]; MAX_ASPECTS],
     arm_linear_below: bool,
+    demand_scale: [T; 2],
 }
 
 #[inline(always)]
@@ -206,6 +211,7 @@ impl<T: Real> Capacity<T> {
             shapes: 1,
             inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
             arm_linear_below: cfg.gamma > 0.0,
+            demand_scale: [T::one(); 2],
         };
         let ln_n_min = P::of(cfg.n_min_n).libm_ln();
         let ln_step = (P::of(cfg.n_max_n).libm_ln() - ln_n_min) / P::of_usize(nodes - 1);
@@ -236,8 +242,15 @@ impl<T: Real> Capacity<T> {
         }
         cap.fill_inv_width();
         check_range(cfg, &cap)?;
-        if cfg.mode == Mode::Table {
-            cap.build_shapes(cfg, &model, &contact, varying)?;
+        match cfg.mode {
+            Mode::Table => cap.build_shapes(cfg, &model, &contact, varying)?,
+            Mode::Ellipse => {
+                let e = inscribed_ellipse(cfg, &model, &contact, varying)?;
+                cap.demand_scale = [
+                    T::of(e.x_semi_axis.recip().to_f64()),
+                    T::of(e.y_semi_axis.recip().to_f64()),
+                ];
+            }
         }
         // The grid as stored in `T` must itself be valid (increasing finite forces,
         // positive finite arms and radii): a configuration valid in f64 can round to
@@ -323,7 +336,43 @@ impl<T: Real> Capacity<T> {
                 }
             }
         }
+        self.inflate_rows(shapes);
         Ok(())
+    }
+
+    /// Makes the interpolation between aspect rows conservative. Along a row the chords
+    /// already are (the polygon lies inside the convex surface), but the linear blend of
+    /// two rows can fall below the surface in between by up to `h²·|w''|/8`. The rows'
+    /// second differences estimate `h²·w''`; every row is raised by twice the largest such
+    /// estimate over 8 (relative), plus 1 % of the largest first difference (the aspect
+    /// position is blended linearly in `N` rather than `ln N` between force nodes) and
+    /// four rounding units of `T`. With two rows (no second difference) the raise is half
+    /// their largest relative difference. `tests/conservative.rs` checks the result against
+    /// the exact surface; for the default finger the raise is about 1e-3.
+    fn inflate_rows(&mut self, shapes: usize) {
+        let rows = self.inv_radius.get(..shapes).unwrap_or(&[]);
+        let (mut curve, mut slope) = (0.0f64, 0.0f64);
+        for i in 0..DIRECTIONS {
+            let w = |e: usize| rows.get(e).map_or(1.0, |r| at(r, i).to_f64());
+            for e in 1..shapes {
+                slope = slope.max((w(e) - w(e - 1)).abs() / w(e).min(w(e - 1)));
+            }
+            for e in 1..shapes.saturating_sub(1) {
+                let d2 = w(e + 1) - 2.0 * w(e) + w(e - 1);
+                curve = curve.max(d2.abs() / w(e));
+            }
+        }
+        let raise = if shapes > 2 {
+            curve / 4.0 + slope * 0.01
+        } else {
+            slope * 0.5
+        } + 4.0 * T::epsilon().to_f64();
+        let k = T::of(1.0 + raise);
+        for row in self.inv_radius.iter_mut().take(shapes) {
+            for w in row.iter_mut() {
+                *w = *w * k;
+            }
+        }
     }
 
     /// The grid as plain arrays (see [`Tables`]).
@@ -340,6 +389,7 @@ impl<T: Real> Capacity<T> {
             inv_arm_per_m: self.inv_arm_per_m.get(..n).unwrap_or(&[]),
             aspect_pos: self.aspect_pos.get(..n).unwrap_or(&[]),
             inv_radius: self.inv_radius.get(..rows).unwrap_or(&[]),
+            demand_scale: self.demand_scale,
         }
     }
 
@@ -421,6 +471,18 @@ impl<T: Real> Capacity<T> {
                 return bad("inv_radius", r);
             }
         }
+        // The inscribed ellipse's semi-axes are at most those of Eq. 10's unit circle (the
+        // surface crosses the axes at (1, 0) and (0, 1)): scales below 1 (up to rounding)
+        // would ask for less than the exact surface needs. Table mode applies none.
+        let scale_ok = |x: T| x >= T::of(1.0 - 1e-6) && x.is_finite();
+        let unit = cfg.mode == Mode::Table;
+        if let Some(i) = t
+            .demand_scale
+            .iter()
+            .position(|&x| !scale_ok(x) || (unit && x != T::one()))
+        {
+            return bad("demand_scale", i);
+        }
         let mut cap = Self {
             mode: cfg.mode,
             nodes,
@@ -432,6 +494,7 @@ impl<T: Real> Capacity<T> {
             shapes: shapes.max(1),
             inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
             arm_linear_below: cfg.gamma > 0.0,
+            demand_scale: t.demand_scale,
         };
         for (dst, src) in [
             (&mut cap.force_n, t.force_n),
@@ -544,7 +607,21 @@ impl<T: Real> Capacity<T> {
     /// holds: `N_req`. Inputs must be finite and non-negative (the tick guarantees it).
     /// Cost: `log2(force_nodes)` node tests, then at most [`MAX_ILLINOIS_ITERATIONS`].
     pub fn required_force<M: TickMath<T>>(&self, f: T, m: T) -> Solution<T> {
+        let (f, m) = self.scaled(f, m);
         self.solve_from::<M>(f, m, 0, None)
+    }
+
+    /// The demand as the test sees it: times [`Tables::demand_scale`] (ellipse mode's
+    /// inscribed ellipse; exact identity in table mode).
+    #[inline(always)]
+    fn scaled(&self, f: T, m: T) -> (T, T) {
+        let [sf, sm] = self.demand_scale;
+        (f * sf, m * sm)
+    }
+
+    /// `(1/A, 1/B)`, see [`Tables::demand_scale`].
+    pub fn demand_scale(&self) -> [T; 2] {
+        self.demand_scale
     }
 
     /// [`Capacity::required_force`], trying first the grid interval of a previous answer
@@ -552,6 +629,7 @@ impl<T: Real> Capacity<T> {
     /// tick to the next, and two node tests then replace the binary search. Same answer
     /// for any hint.
     pub fn required_force_near<M: TickMath<T>>(&self, f: T, m: T, hint: usize) -> Solution<T> {
+        let (f, m) = self.scaled(f, m);
         self.solve_from::<M>(f, m, 0, Some(hint))
     }
 
@@ -567,6 +645,7 @@ impl<T: Real> Capacity<T> {
         s: T,
     ) -> Solution<T> {
         let from = if s >= T::one() { slip.node } else { 0 };
+        let (f, m) = self.scaled(f, m);
         self.solve_from::<M>(f * s, m * s, from, None)
     }
 
@@ -761,6 +840,7 @@ impl<T: Real> Capacity<T> {
         if !(n > T::zero()) {
             return cap;
         }
+        let (f, m) = self.scaled(f, m);
         let (arm, pos) = self.arm_at(n);
         let fr = f * arm;
         // The demand times R: ellipse |(F R, M)|, table (F R + M)·w(t).
@@ -777,6 +857,57 @@ impl<T: Real> Capacity<T> {
         } else {
             u.min(cap)
         }
+    }
+}
+
+/// Centres of rotation per sweep for ellipse mode's inscribed ellipse.
+pub const INSCRIBED_SAMPLES: usize = 32;
+
+/// Ellipse mode's start-up fit: the ellipse inscribed in the exact surfaces (with the
+/// configured skew) at the largest, the smallest and the middle (in `ln`) aspect ratio of
+/// the force range, fitted at the largest (the exact surface lies furthest inside Eq. 10
+/// for long patches) and shrunk into all three. Cost: three sweeps of
+/// [`INSCRIBED_SAMPLES`] (one for the disc and `γ = 0`).
+fn inscribed_ellipse<P: Real>(
+    cfg: &ControllerConfig,
+    model: &FlsModel<P>,
+    contact: &ContactSize<P>,
+    varying: bool,
+) -> Result<InscribedEllipse<P>, ConfigError> {
+    let l = P::of(cfg.half_length_m);
+    let aspect = |n: f64| (l / contact.half_width_m(P::of(n))).to_f64();
+    let (hi, lo) = (aspect(cfg.n_min_n), aspect(cfg.n_max_n));
+    let sweep = |a: f64| -> Result<FlsTable<P, { INSCRIBED_SAMPLES + 1 }>, ConfigError> {
+        FlsTable::sweep(&model.with_aspect(a)?, INSCRIBED_SAMPLES)
+    };
+    let first = sweep(hi)?;
+    let fitted = if varying {
+        let mid = sweep(libm::sqrt(hi * lo))?;
+        let last = sweep(lo)?;
+        InscribedEllipse::fit_within(
+            first.points(),
+            &[first.points(), mid.points(), last.points()],
+        )
+    } else {
+        InscribedEllipse::fit_within(first.points(), &[first.points()])
+    };
+    // The unit circle's scale is the fallback only if no ellipse fits the samples, which
+    // the validated domain does not produce; refuse rather than under-ask.
+    let e = fitted.ok_or(ConfigError::OutOfRange {
+        param: "k",
+        value: cfg.k,
+        expected: "a limit surface an ellipse can be fitted into",
+    })?;
+    // Up to rounding: the surface crosses the axes at exactly 1.
+    let unit = |x: P| x > P::zero() && x <= P::of(1.0 + 1e-6);
+    if unit(e.x_semi_axis) && unit(e.y_semi_axis) {
+        Ok(e)
+    } else {
+        Err(ConfigError::OutOfRange {
+            param: "k",
+            value: cfg.k,
+            expected: "a limit surface inside Eq. 10's ellipse",
+        })
     }
 }
 

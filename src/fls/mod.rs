@@ -25,7 +25,7 @@ pub mod ellipse;
 pub mod sweep;
 
 pub use aspect_grid::AspectGrid;
-pub use ellipse::{EllipseFit, RadialGap};
+pub use ellipse::{EllipseFit, InscribedEllipse, RadialGap};
 pub use sweep::{FlsTable, SweepMap};
 
 use crate::error::{check, ConfigError};

@@ -4,7 +4,7 @@
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
-use softgrip::fls::{EllipseFit, RadialGap};
+use softgrip::fls::{EllipseFit, InscribedEllipse, RadialGap};
 use softgrip::{
     ConfigError, FlsConfig, FlsModel, FlsPoint, FlsTable, QuadratureOrder, Real, Shape,
 };
@@ -109,6 +109,21 @@ struct EllipseOut {
     max_outside: f64,
 }
 
+/// The ellipse inscribed in the exact surface, as ellipse mode fits it at start-up, and
+/// what it costs in force over the exact surface.
+#[derive(Debug, Serialize)]
+struct InscribedOut {
+    /// Semi-axis along f̃.
+    f_semi_axis: f64,
+    /// Semi-axis along m̃/pitch (1 is Eq. 10's).
+    m_over_pitch_semi_axis: f64,
+    /// Largest extra force it asks over the exact surface, over load directions [%]
+    /// (for a contact of fixed size; less when the contact grows with the force).
+    force_over_exact_max_pct: f64,
+    /// Mean of the same over 91 load directions [%].
+    force_over_exact_mean_pct: f64,
+}
+
 #[derive(Debug, Serialize)]
 struct Report {
     shape: &'static str,
@@ -123,6 +138,7 @@ struct Report {
     /// Whether each ray from the origin meets the swept curve once (needed for table lookup).
     star_shaped: bool,
     ellipse: EllipseOut,
+    inscribed: InscribedOut,
     samples: Vec<Sample>,
 }
 
@@ -245,6 +261,9 @@ fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
     let fit = EllipseFit::fit(table.points())
         .ok_or_else(|| CliError::Failed("the sweep does not determine an ellipse".into()))?;
     let gap = RadialGap::find(&model, &table);
+    let inscribed = InscribedEllipse::fit_within(table.points(), &[table.points()])
+        .ok_or_else(|| CliError::Failed("no ellipse fits inside the sweep".into()))?;
+    let (over_max, over_mean) = inscribed.force_overhead(table.points(), 91);
     let samples: Vec<Sample> = if args.at.is_empty() {
         table
             .points()
@@ -280,6 +299,12 @@ fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
             max_relative_gap: gap.max_relative_gap.to_f64(),
             max_gap_at: sample(&gap.at),
             max_outside: gap.max_outside.to_f64(),
+        },
+        inscribed: InscribedOut {
+            f_semi_axis: inscribed.x_semi_axis.to_f64(),
+            m_over_pitch_semi_axis: inscribed.y_semi_axis.to_f64(),
+            force_over_exact_max_pct: 100.0 * over_max.to_f64(),
+            force_over_exact_mean_pct: 100.0 * over_mean.to_f64(),
         },
         samples,
     };
@@ -331,6 +356,15 @@ fn write_table(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         r.ellipse.max_radial_gap,
         100.0 * r.ellipse.max_relative_gap,
         r.ellipse.max_gap_at.d
+    )?;
+    writeln!(
+        out,
+        "# inscribed ellipse (ellipse mode): semi-axes {:.6} (f), {:.6} (m/pitch); force over \
+         the exact surface: max {:.2} %, mean {:.2} %",
+        r.inscribed.f_semi_axis,
+        r.inscribed.m_over_pitch_semi_axis,
+        r.inscribed.force_over_exact_max_pct,
+        r.inscribed.force_over_exact_mean_pct
     )?;
     if !r.star_shaped {
         writeln!(

@@ -1,6 +1,7 @@
 //! `host-sim required-force`: MODEL.md's slip-prevention rule for one load, computed by
 //! the controller's own start-up grid and solver.
 
+use crate::accuracy::exact::{ExactSurface, Finger, Rule};
 use crate::fls_cmd::ShapeArg;
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -130,6 +131,12 @@ pub struct RequiredForce {
     pub precision: &'static str,
     /// `libm` or `micromath`.
     pub math: &'static str,
+    /// `N_req(s)` on the exact limit surface (MODEL.md's table reading), with no grid: a
+    /// root search in `ln N` in f64 with the surface integrated at every trial force [N].
+    pub exact_force: f64,
+    /// `normal_force / exact_force − 1`: what this mode asks over the exact surface
+    /// (never negative beyond rounding: the controller is conservative by construction).
+    pub over_exact: f64,
 }
 
 /// The command-line flag of a configuration field.
@@ -237,21 +244,42 @@ fn compute<T: Real, M: TickMath<T>>(
             "f64"
         },
         math: M::NAME,
+        exact_force: f64::NAN,
+        over_exact: f64::NAN,
     })
+}
+
+/// `N_req(s)` of the load on the exact surface of `cfg`'s finger (see
+/// [`RequiredForce::exact_force`]).
+fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError> {
+    let finger = Finger::new(*cfg).map_err(CliError::Failed)?;
+    let surface = ExactSurface::new(finger, usize::from(cfg.quadrature_order), 1e-13, 1e-12)
+        .map_err(CliError::Failed)?;
+    let s = cfg.safety / cfg.mu;
+    Ok(surface
+        .required_in(Rule::Exact, ft * s, mn * s, 1e-12, 1e12)
+        .0)
 }
 
 /// Computes the answer for the arguments.
 pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliError> {
     let cfg = config(args)?;
     let (ft, mn) = (args.ft.abs(), args.mn.abs());
-    match (args.precision, args.math) {
+    let mut r = match (args.precision, args.math) {
         (PrecisionArg::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),
         (PrecisionArg::F32, MathArg::Libm) => compute::<f32, Libm>(cfg, ft, mn),
         (PrecisionArg::F32, MathArg::Micromath) => compute::<f32, Micromath>(cfg, ft, mn),
         (PrecisionArg::F64, MathArg::Micromath) => Err(CliError::Usage(
             "--math: micromath is f32 only (add --precision f32)".into(),
         )),
-    }
+    }?;
+    r.exact_force = exact_force(&cfg, ft, mn)?;
+    r.over_exact = if r.exact_force > 0.0 {
+        r.normal_force / r.exact_force - 1.0
+    } else {
+        0.0
+    };
+    Ok(r)
 }
 
 /// Runs `host-sim required-force`.
@@ -269,6 +297,11 @@ pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
                 r.normal_force, args.safety
             );
             println!("n_slip        {:>14.6e} N", r.n_slip);
+            println!(
+                "exact_force   {:>14.6e} N   N_req(s) on the exact surface ({:+.3} % over it)",
+                r.exact_force,
+                100.0 * r.over_exact
+            );
             println!(
                 "a             {:>14.6e} m   contact half-width at normal_force",
                 r.a

@@ -8,7 +8,7 @@
 //! `N_req(s)` is rising and asks for it one lead horizon `h` ahead:
 //!
 //! ```text
-//! N_target = N_req + max(0, Ṅ_req)·h,   h = min(τ / (1 − Ṅ_req/r), HORIZON_MAX_LAGS·τ)
+//! N_target = N_req + max(0, Ṅ_req − Ṅ₀)·h,   h = min(τ / (1 − Ṅ_req/r), HORIZON_MAX_LAGS·τ)
 //! ```
 //!
 //! where `r` is the actuator's slew rate (`actuator_slew_n_per_s`, ∞ when not limited).
@@ -19,11 +19,13 @@
 //! no lead (the lag then holds the force up, on the safe side).
 //!
 //! `Ṅ_req` comes from two first-order low-pass stages with the time constant
-//! [`FILTER_TAU_S`]: one on `N_req`, one on its difference quotient. Sensor noise of
-//! 0.02 N on each force component (the simulator's `sensor_noise` default) moves the
-//! lead by a few hundredths of a newton. The filters delay the estimate by about
-//! `2·FILTER_TAU_S`; loads that change much faster than that are covered by the safety
-//! factor and, with a slip sensor, by the slip response.
+//! [`FILTER_TAU_S`]: one on `N_req`, one on its difference quotient; rates below the dead
+//! band `Ṅ₀` = [`RATE_DEADBAND_N_PER_S`] are taken as noise. Sensor noise of 0.02 N on each
+//! force component (the simulator's `sensor_noise` default) then moves the command by
+//! under a hundredth of a newton on average (`tests/robust_grip.rs` measures it), while a
+//! lift or a shake (tens to hundreds of N/s) gets its full lead. The filters delay the
+//! estimate by about `2·FILTER_TAU_S`; loads that change much faster than that are
+//! covered by the safety factor and, with a slip sensor, by the slip response.
 //!
 //! With `actuator_lag_s = 0` none of this runs: the target is `N_req`, bit for bit.
 //! Cost per tick: about ten multiplications and one division.
@@ -31,7 +33,9 @@
 use crate::real::Real;
 
 /// Time constant of each of the two rate filters [s].
-pub const FILTER_TAU_S: f64 = 0.004;
+pub const FILTER_TAU_S: f64 = 0.006;
+/// Rates of `N_req` up to this are taken as sensor noise and get no lead [N/s].
+pub const RATE_DEADBAND_N_PER_S: f64 = 2.0;
 /// The longest lead horizon, in actuator lags.
 pub const HORIZON_MAX_LAGS: f64 = 4.0;
 
@@ -44,6 +48,7 @@ pub(crate) struct Lead<T> {
     max_horizon_s: T,
     alpha: T,
     inv_dt: T,
+    deadband: T,
     // State.
     level: Option<T>,
     rate: T,
@@ -64,6 +69,7 @@ impl<T: Real> Lead<T> {
             max_horizon_s: T::of(actuator_lag_s * HORIZON_MAX_LAGS),
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             inv_dt: T::of(1.0 / tick_period_s),
+            deadband: T::of(RATE_DEADBAND_N_PER_S),
             level: None,
             rate: T::zero(),
         }
@@ -90,7 +96,8 @@ impl<T: Real> Lead<T> {
         let raw = (next - level) * self.inv_dt;
         self.rate = self.rate + (raw - self.rate) * self.alpha;
         self.level = Some(next);
-        if !(self.rate > T::zero()) {
+        let rising = self.rate - self.deadband;
+        if !(rising > T::zero()) {
             return required_n;
         }
         let climb = T::one() - self.rate * self.inv_slew;
@@ -99,7 +106,7 @@ impl<T: Real> Lead<T> {
         } else {
             self.max_horizon_s
         };
-        let lead = self.rate * horizon;
+        let lead = rising * horizon;
         if lead.is_finite() {
             required_n + lead
         } else {

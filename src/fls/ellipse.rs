@@ -190,9 +190,12 @@ impl<T: Real> InscribedEllipse<T> {
         if !(pitch > T::zero()) {
             return None;
         }
+        // The fit takes at most 129 points, evenly strided (the shrink and the overhead
+        // use them all).
         let mut scaled = [FlsPoint::default(); 129];
-        let n = points.len().min(scaled.len());
-        for (s, p) in scaled.iter_mut().zip(points) {
+        let stride = points.len().div_ceil(scaled.len()).max(1);
+        let n = points.len().div_ceil(stride).min(scaled.len());
+        for (s, p) in scaled.iter_mut().zip(points.iter().step_by(stride)) {
             *s = FlsPoint {
                 d: p.d,
                 f: p.f,

@@ -20,7 +20,7 @@
 use crate::controller::{Controller, ControllerConfig, Libm, Measurement, Tables, TickMath};
 use crate::protocol::{
     encode, CommandFrame, CostUnit, DefaultFrameDecoder, Reply, Request, SensorFrame, Stats,
-    WireConfigError, MAX_FRAME_LEN,
+    WireConfigError, MAX_FRAME_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use crate::real::Real;
 use core::marker::PhantomData;
@@ -149,6 +149,7 @@ pub struct Device<M = Libm, S = Precompute<f32>> {
     source: S,
     stack_probe: fn() -> u32,
     shutdown: Option<u8>,
+    incompatible: bool,
     decoder: DefaultFrameDecoder,
     frames_sent: u32,
     ticks: u32,
@@ -184,6 +185,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             source,
             stack_probe: no_stack_probe,
             shutdown: None,
+            incompatible: false,
             decoder: DefaultFrameDecoder::new(),
             frames_sent: 0,
             ticks: 0,
@@ -226,6 +228,10 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             startup_cost: self.startup_cost,
             stack_peak_bytes: (self.stack_probe)(),
             cost_unit: C::UNIT,
+            stale_frames: self
+                .controller
+                .as_ref()
+                .map_or(0, Controller::time_rejections),
         }
     }
 
@@ -238,14 +244,41 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         actuator: &mut A,
         clock: &mut C,
     ) -> Reply {
+        let incompatible = Reply::Incompatible {
+            version: PROTOCOL_VERSION,
+            schema_key: SCHEMA_KEY,
+        };
         match request {
-            Request::Hello { .. } => Reply::hello(),
+            Request::Hello {
+                version,
+                schema_key,
+            } => {
+                self.incompatible = version != PROTOCOL_VERSION || schema_key != SCHEMA_KEY;
+                if self.incompatible {
+                    #[cfg(feature = "defmt")]
+                    defmt::warn!("incompatible host: protocol {=u16}", version);
+                    incompatible
+                } else {
+                    Reply::hello()
+                }
+            }
+            Request::Configure(_) | Request::Sensor(_) if self.incompatible => incompatible,
+            Request::Configure(cfg)
+                if self.controller.as_ref().is_some_and(|c| *c.config() == cfg) =>
+            {
+                // The same configuration again: nothing to rebuild, nothing changes.
+                Reply::Configured(Ok(()))
+            }
             Request::Configure(cfg) => {
                 let start = clock.now();
                 let built = self.source.controller(cfg);
                 let cost = clock.now().wrapping_sub(start);
                 match built {
-                    Ok(ctl) => {
+                    Ok(mut ctl) => {
+                        // A running grasp is handed over, not released.
+                        if let Some(previous) = self.controller.as_ref() {
+                            ctl.take_over_from(previous);
+                        }
                         actuator.set_force_n(ctl.command_n());
                         self.controller = Some(ctl);
                         self.startup_cost = cost;

@@ -176,6 +176,7 @@ fn stats_sample() -> Stats {
         startup_cost: 7_654_321,
         stack_peak_bytes: 3_072,
         cost_unit: CostUnit::Cycles,
+        stale_frames: Default::default(),
     }
 }
 
@@ -381,6 +382,7 @@ fn largest_replies() -> Vec<Reply> {
             startup_cost: u32::MAX,
             stack_peak_bytes: u32::MAX,
             cost_unit: CostUnit::Cycles,
+            stale_frames: Default::default(),
         }),
         Reply::NotConfigured { seq: u32::MAX },
         Reply::ShuttingDown { code: u8::MAX },
@@ -1004,8 +1006,9 @@ const SCHEMA_HISTORY: &[(u32, u32)] = &[
     // Protocol 2: tick_cost in CommandFrame, stack_peak_bytes in Stats, Shutdown/ShuttingDown.
     (0xc3d4_8d21, 0x7281_1450),
     // Protocol 3: the slip signal in SensorFrame, the μ estimate and margin in
-    // CommandFrame, the actuator's lag and slew in ControllerConfig.
-    (0xaa5e_1602, 0x68f5_3718),
+    // CommandFrame, the actuator's lag and slew in ControllerConfig, stale_frames in
+    // Stats, the Incompatible reply to a mismatched Hello.
+    (0xf871_8816, 0xb90f_1896),
 ];
 
 /// A fixed value of every variant, encoded: it moves whenever the encoding does.
@@ -1078,6 +1081,10 @@ fn golden_digest() -> u32 {
         Reply::Configured(Err(wire_error_sample())),
         Reply::NotConfigured { seq: 4 },
         Reply::ShuttingDown { code: 6 },
+        Reply::Incompatible {
+            version: 9,
+            schema_key: 0x1234_5678,
+        },
     ];
     for (i, status) in statuses.into_iter().enumerate() {
         replies.push(Reply::Command(CommandFrame {
@@ -1178,7 +1185,11 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
         }
         | Reply::Configured(Ok(()))
         | Reply::NotConfigured { seq: _ }
-        | Reply::ShuttingDown { code: _ } => {}
+        | Reply::ShuttingDown { code: _ }
+        | Reply::Incompatible {
+            version: _,
+            schema_key: _,
+        } => {}
         Reply::Configured(Err(WireConfigError {
             param: _,
             message: _,
@@ -1208,6 +1219,7 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             startup_cost: _,
             stack_peak_bytes: _,
             cost_unit,
+            stale_frames: _,
         }) => match cost_unit {
             CostUnit::Nanoseconds | CostUnit::Instructions | CostUnit::Cycles => {}
         },
@@ -1406,6 +1418,7 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
             startup_cost: c[8],
             stack_peak_bytes: c[9],
             cost_unit,
+            stale_frames: Default::default(),
         })),
         any::<u32>().prop_map(|seq| Reply::NotConfigured { seq }),
         any::<u8>().prop_map(|code| Reply::ShuttingDown { code }),

@@ -131,6 +131,10 @@ pub struct RequiredForce {
     pub precision: &'static str,
     /// `libm` or `micromath`.
     pub math: &'static str,
+    /// The semi-axes `(A, B)` of the ellipse the mode tests against, in `(f̃, m̃/pitch)`:
+    /// ellipse mode's inscribed ellipse (`(1, 1)` would be Eq. 10's); `(1, 1)` in table mode,
+    /// which applies none.
+    pub ellipse_axes: [f64; 2],
     /// `N_req(s)` on the exact limit surface (MODEL.md's table reading), with no grid: a
     /// root search in `ln N` in f64 with the surface integrated at every trial force [N].
     pub exact_force: f64,
@@ -244,6 +248,10 @@ fn compute<T: Real, M: TickMath<T>>(
             "f64"
         },
         math: M::NAME,
+        ellipse_axes: {
+            let [sf, sm] = ctl.capacity().demand_scale();
+            [1.0 / sf.to_f64(), 1.0 / sm.to_f64()]
+        },
         exact_force: f64::NAN,
         over_exact: f64::NAN,
     })

@@ -80,6 +80,12 @@ pub enum BlobError {
     },
     /// The body does not decode.
     Malformed,
+    /// The body decodes, but its header fields contradict its contents (`check` names
+    /// the failed check).
+    Implausible {
+        /// The failed check.
+        check: &'static str,
+    },
     /// The blob was made for another number of load directions.
     Directions {
         /// The blob's.
@@ -110,6 +116,7 @@ impl core::fmt::Display for BlobError {
                 "blob: CRC mismatch (stored {stored:#010x}, computed {computed:#010x}): corrupt"
             ),
             BlobError::Malformed => write!(f, "blob: the body does not decode"),
+            BlobError::Implausible { check } => write!(f, "blob: implausible contents: {check}"),
             BlobError::Directions { found } => write!(
                 f,
                 "blob: made for {found} load directions, this build uses {DIRECTIONS}"
@@ -228,7 +235,33 @@ impl Blob {
         }
         let shapes = usize::from(body.shapes);
         if shapes > MAX_ASPECTS || body.inv_radius.len() != shapes * DIRECTIONS {
-            return Err(BlobError::Malformed);
+            return Err(BlobError::Implausible {
+                check: "shapes × directions = inv_radius entries",
+            });
+        }
+        let nodes = usize::from(body.nodes);
+        if nodes > MAX_FORCE_NODES {
+            return Err(BlobError::Implausible {
+                check: "nodes <= MAX_FORCE_NODES",
+            });
+        }
+        if [
+            body.force_n.len(),
+            body.arm_m.len(),
+            body.inv_arm_per_m.len(),
+            body.aspect_pos.len(),
+        ]
+        .iter()
+        .any(|&n| n != nodes)
+        {
+            return Err(BlobError::Implausible {
+                check: "nodes = entries of every node table",
+            });
+        }
+        if usize::from(body.config.force_nodes) != nodes {
+            return Err(BlobError::Implausible {
+                check: "nodes = the configuration's force_nodes",
+            });
         }
         let mut rows = [[0.0f32; DIRECTIONS]; MAX_ASPECTS];
         for (row, chunk) in rows

@@ -102,6 +102,14 @@ pub enum TableError {
         /// The index of the first bad value.
         index: usize,
     },
+    /// The tables contradict themselves (`check` names how: the moment arm and its stored
+    /// inverse disagree, the arms fall with the force, the aspect positions rise with it).
+    Inconsistent {
+        /// The failed check.
+        check: &'static str,
+        /// The index where it fails.
+        index: usize,
+    },
     /// The node forces do not match the configuration's `N_min`/`N_max`.
     Mismatch {
         /// The configuration field that disagrees.
@@ -124,6 +132,9 @@ impl core::fmt::Display for TableError {
             }
             TableError::Invalid { what, index } => {
                 write!(f, "tables: {what}[{index}] is not a valid value")
+            }
+            TableError::Inconsistent { check, index } => {
+                write!(f, "tables: {check} fails at index {index}")
             }
             TableError::Mismatch { param } => {
                 write!(f, "tables: they were made for another {param}")
@@ -453,6 +464,37 @@ impl<T: Real> Capacity<T> {
         for (what, v) in [("arm_m", t.arm_m), ("inv_arm_per_m", t.inv_arm_per_m)] {
             if let Some(i) = v.iter().position(|&x| !(x > T::zero() && x.is_finite())) {
                 return bad(what, i);
+            }
+        }
+        // The arm and its stored inverse agree (to f32 rounding); the arm grows with the
+        // force (a = c·N^γ, γ ≥ 0) and the aspect l/a, hence its position, falls.
+        let tol = T::of(1e-5);
+        for (i, (&r, &ir)) in t.arm_m.iter().zip(t.inv_arm_per_m).enumerate() {
+            if !((r * ir - T::one()).abs() <= tol) {
+                return Err(TableError::Inconsistent {
+                    check: "arm_m × inv_arm_per_m = 1",
+                    index: i,
+                });
+            }
+        }
+        for (i, w) in t.arm_m.windows(2).enumerate() {
+            if let [a, b] = w {
+                if *b < *a * (T::one() - tol) {
+                    return Err(TableError::Inconsistent {
+                        check: "arm_m does not fall with the force",
+                        index: i + 1,
+                    });
+                }
+            }
+        }
+        for (i, w) in t.aspect_pos.windows(2).enumerate() {
+            if let [a, b] = w {
+                if *b > *a + tol {
+                    return Err(TableError::Inconsistent {
+                        check: "aspect_pos does not rise with the force",
+                        index: i + 1,
+                    });
+                }
             }
         }
         // Positions computed in f64 and rounded may overshoot the ends by an ulp; the

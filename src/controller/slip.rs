@@ -159,7 +159,7 @@ impl<T: Real> SlipResponse<T> {
 
     /// Takes one tick's signal; `utilisation` is that of the tick's load at the measured
     /// normal force under the present `μ̂` (no safety factor). Returns whether the margin
-    /// was stepped (the tick then allows the emergency rise).
+    /// rose or `μ̂` fell (the tick then allows the emergency rise).
     pub(crate) fn observe(&mut self, signal: SlipSignal, utilisation: T) -> bool {
         self.since_step = self.since_step.saturating_add(1);
         let step = match signal {
@@ -179,16 +179,19 @@ impl<T: Real> SlipResponse<T> {
         }
         self.since_step = 0;
         self.pristine = false;
-        self.margin = (self.margin + step).min(T::of(MARGIN_MAX));
+        let margin = (self.margin + step).min(T::of(MARGIN_MAX));
+        let mut changed = margin > self.margin;
+        self.margin = margin;
         let u = utilisation;
         if u >= T::of(PLAUSIBLE_UTILISATION) && u < T::one() {
             let mu = (self.mu_hat * u).max(self.mu_floor);
             if mu < self.mu_hat {
                 self.mu_hat = mu;
                 self.inv_mu_hat = mu.recip();
+                changed = true;
             }
         }
-        true
+        changed
     }
 
     fn relax(&mut self) {

@@ -72,6 +72,21 @@ pub struct TickOutput<T> {
     pub margin: T,
 }
 
+/// Frames in a row, each plausibly newer than the one before, that re-anchor the
+/// controller's clock when they all disagree with its anchor (see [`Controller`], "Time").
+pub const RESYNC_FRAMES: u8 = 3;
+
+/// The largest plausible step between two good timestamps [µs]: 1 s, or four tick
+/// periods if longer.
+fn max_step_us(tick_period_s: f64) -> u64 {
+    let us = libm::ceil((tick_period_s * 4.0).max(1.0) * 1e6);
+    if us >= u64::MAX as f64 {
+        u64::MAX / 2
+    } else {
+        us as u64
+    }
+}
+
 /// The slip-prevention controller.
 ///
 /// Built once by [`Controller::new`], which validates the [`ControllerConfig`] into a
@@ -89,10 +104,27 @@ pub struct TickOutput<T> {
 ///    `fall_rate·dt` down (`dt` the tick period): it rises fast and relaxes slowly.
 ///
 /// For a bad measurement (NaN, ±∞, beyond the sensor range: `SensorFault`) or a stale one
-/// (timestamp not newer: `StaleInput`) it holds the last command and reports the last good
+/// (see "Time": `StaleInput`) it holds the last command and reports the last good
 /// `N_req`, `N_slip` and utilisation. Once no good measurement has arrived for
 /// `stale_timeout_s` it moves the command to `fault_force_n`, rate-limited, and sets
 /// `fault_active` until a good measurement comes. The command starts at `N_min`.
+///
+/// **Time.** Timestamps are compared with wrapping arithmetic: a measurement is newer when
+/// its timestamp is 1 µs to 1 s (or four tick periods, if longer) after the last good one,
+/// modulo 2⁶⁴, so a sensor clock that wraps keeps working; each bad or idle tick since the
+/// last good measurement widens the window by two tick periods, so frames after a silence
+/// of any length are taken at once. Anything else (a repeat, an
+/// older frame, a jump into the far future such as `u64::MAX`) is refused as
+/// `StaleInput`, counted ([`Controller::time_rejections`]), and leaves the anchor where it
+/// was: one bad timestamp costs exactly one frame. When [`RESYNC_FRAMES`] refused frames
+/// in a row each follow the one before by a plausible step, the sensor's clock has really
+/// moved (a restart, a long silence): the last of them is accepted and becomes the new
+/// anchor.
+///
+/// **Continuity.** The command moves by at most `rise_rate·dt` up and `fall_rate·dt`
+/// down per tick and stays in `[N_min, N_max]`, whatever the input; the one exception is
+/// the emergency rise on a slip signal (see [`slip`](super::slip)). A reconfiguration
+/// hands over with [`Controller::take_over_from`].
 ///
 /// `T` is the precision of the tick (f32 on the Cortex-M4F), `M` its math backend.
 #[derive(Debug, Clone)]
@@ -115,6 +147,10 @@ pub struct Controller<T, M = Libm> {
     command: T,
     last: Option<TickOutput<T>>,
     last_good_us: Option<u64>,
+    max_step_us: u64,
+    period_us: u64,
+    resync: Option<(u64, u8)>,
+    time_rejections: u32,
     bad_ticks: u32,
     slip_node: usize,
     _math: PhantomData<M>,
@@ -174,6 +210,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             command: T::of(config.n_min_n),
             last: None,
             last_good_us: None,
+            max_step_us: max_step_us(config.tick_period_s),
+            period_us: libm::ceil(config.tick_period_s * 1e6).min(1e12) as u64,
+            resync: None,
+            time_rejections: 0,
             bad_ticks: 0,
             slip_node: 0,
             capacity,
@@ -202,6 +242,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.command = self.n_min;
         self.last = None;
         self.last_good_us = None;
+        self.resync = None;
         self.bad_ticks = 0;
         self.slip_node = 0;
         self.lead.reset();
@@ -264,12 +305,90 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     pub fn tick(&mut self, m: &Measurement<T>) -> TickOutput<T> {
         let status = if !self.in_range(m) {
             Status::SensorFault
-        } else if self.last_good_us.is_some_and(|t| m.timestamp_us <= t) {
+        } else if !self.timestamp_ok(m.timestamp_us) {
             Status::StaleInput
         } else {
             return self.good_tick(m);
         };
         self.bad_tick(status)
+    }
+
+    /// Whether a measurement stamped `t` may be used (see the type's docs, "Time"); counts
+    /// and tracks those that may not.
+    fn timestamp_ok(&mut self, t: u64) -> bool {
+        let Some(last) = self.last_good_us else {
+            return true;
+        };
+        let step = t.wrapping_sub(last);
+        // Silence (bad or idle ticks) widens the window by twice the time it took.
+        let window = self
+            .max_step_us
+            .saturating_add(u64::from(self.bad_ticks).saturating_mul(self.period_us * 2));
+        if step > 0 && step <= window {
+            self.resync = None;
+            return true;
+        }
+        self.time_rejections = self.time_rejections.saturating_add(1);
+        let agreeing = match self.resync {
+            Some((prev, n)) => {
+                let d = t.wrapping_sub(prev);
+                if d > 0 && d <= self.max_step_us {
+                    n.saturating_add(1)
+                } else {
+                    1
+                }
+            }
+            None => 1,
+        };
+        if agreeing >= RESYNC_FRAMES {
+            // The sensor's clock really moved (a wrap, a restart, a long silence):
+            // re-anchor on it.
+            self.resync = None;
+            return true;
+        }
+        self.resync = Some((t, agreeing));
+        false
+    }
+
+    /// The friction coefficient the controller now believes (see [`slip`](super::slip)).
+    pub fn mu_estimate(&self) -> T {
+        self.slip_response.mu_estimate()
+    }
+
+    /// The margin multiplying the safety factor (see [`slip`](super::slip)).
+    pub fn margin(&self) -> T {
+        self.slip_response.margin()
+    }
+
+    /// Measurements refused for their timestamp so far (saturating).
+    pub fn time_rejections(&self) -> u32 {
+        self.time_rejections
+    }
+
+    /// Takes over from the controller `previous` that this one replaces (a
+    /// reconfiguration): the command continues from the previous one (clamped into this
+    /// configuration's `[N_min, N_max]`) instead of restarting at `N_min`, so a running
+    /// grasp is not released; the timestamp anchor carries over, and so do the slip
+    /// response's `μ̂` and margin when `μ` and the tick period are unchanged. From there
+    /// the rate limits apply as on any tick.
+    pub fn take_over_from<M2>(&mut self, previous: &Controller<T, M2>) {
+        self.command = previous.command.max(self.n_min).min(self.n_max);
+        // What slip taught about this contact stays, unless the new configuration states
+        // a new belief about μ (or a new tick period, which the response counts in).
+        if previous.config.mu == self.config.mu
+            && previous.config.tick_period_s == self.config.tick_period_s
+        {
+            self.slip_response = previous.slip_response.clone();
+        }
+        self.last_good_us = previous.last_good_us;
+        self.resync = previous.resync;
+        self.time_rejections = previous.time_rejections;
+        if let Some(last) = previous.last {
+            self.last = Some(TickOutput {
+                command_n: self.command,
+                ..last
+            });
+        }
     }
 
     /// A tick with no measurement at all: call it once per tick period when the sensor

@@ -35,7 +35,7 @@ Request{Hello{version:u16,schema_key:u32},Configure(ControllerConfig),Sensor(Sen
 GetStats,ResetStats,Shutdown{code:u8}};\
 Reply{Hello{version:u16,schema_key:u32,max_frame_len:u16},\
 Configured(Result<(),WireConfigError>),Command(CommandFrame),Stats(Stats),\
-NotConfigured{seq:u32},ShuttingDown{code:u8}};\
+NotConfigured{seq:u32},ShuttingDown{code:u8},Incompatible{version:u16,schema_key:u32}};\
 SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment_nm:f32,\
 normal_force_n:f32,slip:SlipSignal};\
 SlipSignal{None,Incipient,Gross};\
@@ -44,7 +44,7 @@ fault_active:bool,tick_cost:u32,mu_estimate:f32,margin:f32};\
 Status{Ok,Saturated,SensorFault,StaleInput};\
 Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
 ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
-cost_unit:CostUnit};\
+cost_unit:CostUnit,stale_frames:u32};\
 CostUnit{Nanoseconds,Instructions,Cycles};\
 WireConfigError{param:String<32>,message:String<96>};\
 ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
@@ -162,6 +162,9 @@ pub struct Stats {
     pub stack_peak_bytes: u32,
     /// The unit of the costs.
     pub cost_unit: CostUnit,
+    /// Sensor frames refused for their timestamp (a repeat, an older frame, an
+    /// implausible jump: see the controller's "Time" rule).
+    pub stale_frames: u32,
 }
 
 /// A [`ConfigError`] in a form that crosses the wire: the parameter's name and the
@@ -243,7 +246,9 @@ pub enum Request {
         /// The host's [`SCHEMA_KEY`].
         schema_key: u32,
     },
-    /// (Re)configures the controller; the device answers [`Reply::Configured`].
+    /// (Re)configures the controller; the device answers [`Reply::Configured`]. The same
+    /// configuration again changes nothing; a new one takes over the running command (see
+    /// `Controller::take_over_from`), so a grasp is never released by a reconfiguration.
     Configure(ControllerConfig),
     /// One measurement; the device answers [`Reply::Command`], or
     /// [`Reply::NotConfigured`] before a valid configuration.
@@ -305,6 +310,15 @@ pub enum Reply {
     ShuttingDown {
         /// The exit code it will end with.
         code: u8,
+    },
+    /// Answers a [`Request::Hello`] whose version or schema key differs from the device's,
+    /// and, until a matching `Hello` arrives, every `Configure` and `Sensor`: the device
+    /// does not run with a host that speaks another protocol. Carries the device's side.
+    Incompatible {
+        /// The device's [`PROTOCOL_VERSION`].
+        version: u16,
+        /// The device's [`SCHEMA_KEY`].
+        schema_key: u32,
     },
 }
 

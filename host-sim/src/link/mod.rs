@@ -92,6 +92,16 @@ pub trait Link: std::fmt::Debug {
                         })
                     };
                 }
+                // A device that refuses our protocol says which one it speaks.
+                Ok(Reply::Incompatible {
+                    version,
+                    schema_key,
+                }) => {
+                    return Err(LinkError::Mismatch {
+                        version,
+                        schema_key,
+                    })
+                }
                 Ok(other) => last = LinkError::Unexpected(Box::new(other)),
                 Err(LinkError::Timeout) => last = LinkError::Timeout,
                 Err(e) => return Err(e),

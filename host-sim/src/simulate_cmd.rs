@@ -29,7 +29,8 @@ pub struct SimulateArgs {
     #[arg(long, default_value = "softgrip")]
     controller: String,
     /// The link to the device: `inprocess` (the firmware loop on a thread, over a
-    /// pseudo-terminal) or `qemu` (the Cortex-M4F firmware in QEMU, over its USART).
+    /// pseudo-terminal), `direct` (the same loop and bytes through memory, on this
+    /// thread) or `qemu` (the Cortex-M4F firmware in QEMU, over its USART).
     #[arg(long, default_value = "inprocess")]
     link: String,
     /// The firmware ELF for `--link qemu` (default: what scripts/firmware-build.sh builds).
@@ -136,6 +137,7 @@ fn write_scene_outputs(out: &Path, scene: &str, runs: &[RunOutput]) -> Result<()
 pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     let link = match args.link.as_str() {
         "inprocess" => LinkKind::InProcess,
+        "direct" => LinkKind::Direct,
         "qemu" => {
             let (qemu_dir, firmware) = default_paths();
             LinkKind::Qemu {
@@ -145,7 +147,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         }
         other => {
             return Err(CliError::Usage(format!(
-                "--link: \"{other}\" is not a link, expected inprocess or qemu"
+                "--link: \"{other}\" is not a link, expected inprocess, direct or qemu"
             )))
         }
     };
@@ -190,8 +192,10 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
     let summary_path = args.out.join("summary.json");
     match &link {
-        LinkKind::InProcess => report::write_summary_json(&summary_path, &all)
-            .map_err(|e| CliError::Failed(format!("--out: {e}")))?,
+        LinkKind::InProcess | LinkKind::Direct => {
+            report::write_summary_json(&summary_path, &all)
+                .map_err(|e| CliError::Failed(format!("--out: {e}")))?
+        }
         LinkKind::Qemu { firmware, .. } => {
             let target = target_report(firmware, &all)?;
             println!("{}", target.describe());

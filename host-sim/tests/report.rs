@@ -84,6 +84,7 @@ fn run(scene: &str, controller: &str, events: u64, mean: f64, expected_slip: boo
     RunSummary {
         scene: scene.to_string(),
         controller: controller.to_string(),
+        dropped: false,
         slip_events: events,
         slip_distance_m: 1e-3 * events as f64,
         slip_rotation_rad: 2e-3 * events as f64,

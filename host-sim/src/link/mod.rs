@@ -4,8 +4,11 @@
 //! lockstep with the device, never against the wall clock. [`pty::PtyLink`] is the
 //! default, "in-process" link: the firmware loop ([`softgrip::device::Device`]) runs on a
 //! thread of its own behind a pseudo-terminal pair, so every frame crosses a real
-//! serial device and the same decoder the firmware uses.
+//! serial device and the same decoder the firmware uses. [`direct::DirectLink`] serves
+//! the same device loop with the same bytes on the calling thread, through memory: what
+//! `bench` uses by default (bit-identical answers, no pty round trip).
 
+pub mod direct;
 pub mod pty;
 pub mod qemu;
 

@@ -16,6 +16,13 @@ use std::time::{Duration, Instant};
 #[derive(Debug)]
 pub struct HostClock(Instant);
 
+impl HostClock {
+    /// A clock counting from `start`.
+    pub fn new(start: Instant) -> Self {
+        Self(start)
+    }
+}
+
 impl CostClock for HostClock {
     const UNIT: CostUnit = CostUnit::Nanoseconds;
     fn now(&mut self) -> u32 {

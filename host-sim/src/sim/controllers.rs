@@ -13,6 +13,7 @@
 //! `a_ref` is the contact half-width at the constant baseline's force: the size a
 //! fixed-patch model would be tuned at.
 
+use crate::link::direct::DirectLink;
 use crate::link::pty::PtyLink;
 use crate::link::qemu::QemuLink;
 use crate::link::{Link, LinkError};
@@ -52,6 +53,9 @@ pub const ALL: [&str; 7] = [
 pub enum LinkKind {
     /// The device loop on a thread of its own, over a pseudo-terminal.
     InProcess,
+    /// The device loop on the calling thread, through an in-memory byte stream (the same
+    /// bytes as over the pty).
+    Direct,
     /// The firmware in QEMU, over its USART's pseudo-terminal.
     Qemu {
         /// Where QEMU is unpacked.
@@ -106,6 +110,7 @@ impl SoftgripLink {
     pub fn start(name: &str, cfg: ControllerConfig, kind: &LinkKind) -> Result<Self, LinkError> {
         let mut link: Box<dyn Link> = match kind {
             LinkKind::InProcess => Box::new(PtyLink::spawn::<Libm>()?),
+            LinkKind::Direct => Box::new(DirectLink::<Libm>::new()?),
             LinkKind::Qemu { qemu_dir, firmware } => Box::new(QemuLink::boot(qemu_dir, firmware)?),
         };
         match link.exchange(&Request::Configure(cfg))? {

@@ -64,6 +64,9 @@ pub struct RunSummary {
     pub scene: String,
     /// Controller name.
     pub controller: String,
+    /// Whether the object was dropped ([`crate::sim::run::is_drop`]: slid more than
+    /// 10 mm or turned more than 0.2 rad).
+    pub dropped: bool,
     /// Number of separate slip episodes.
     pub slip_events: u64,
     /// Total slip distance [m].

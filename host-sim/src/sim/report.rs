@@ -622,13 +622,14 @@ fn render_table(headers: &[&str], align: &[Align], rows: &[Vec<String>]) -> Stri
 }
 
 /// A fixed-width text table of the runs, one row each, in input order: scene, controller,
-/// slip events, slip distance [mm], slip rotation [mrad], mean N [N], peak N [N], max
-/// utilisation, expected slip (yes/no) and the [`verdict`].
+/// dropped (yes/no), slip events, slip distance [mm], slip rotation [mrad], mean N [N],
+/// peak N [N], max utilisation, expected slip (yes/no) and the [`verdict`].
 pub fn summary_table(runs: &[RunSummary]) -> String {
     use Align::{Left as L, Right as R};
     let headers = [
         "scene",
         "controller",
+        "dropped",
         "slip events",
         "slip distance [mm]",
         "slip rotation [mrad]",
@@ -638,13 +639,14 @@ pub fn summary_table(runs: &[RunSummary]) -> String {
         "expected slip",
         "verdict",
     ];
-    let align = [L, L, R, R, R, R, R, R, L, L];
+    let align = [L, L, L, R, R, R, R, R, R, L, L];
     let rows: Vec<Vec<String>> = runs
         .iter()
         .map(|r| {
             vec![
                 r.scene.clone(),
                 r.controller.clone(),
+                if r.dropped { "yes" } else { "no" }.to_string(),
                 r.slip_events.to_string(),
                 format!("{:.3}", r.slip_distance_m * 1e3),
                 format!("{:.3}", r.slip_rotation_rad * 1e3),

@@ -15,8 +15,13 @@
 //! and the rest accelerates the object relative to the fingertips
 //! (`a = (1 − 1/u)·|F|/m`, `α = (1 − 1/u)·|M|/I`); once the load is back inside, the
 //! contact sticks again. A slip event is an episode of sliding after at least 10 ms of
-//! sticking. Once the object has slid [`DROP_DISTANCE_M`] or turned [`DROP_ROTATION_RAD`]
-//! it is counted as dropped (metric `dropped_at_s`) and slip is no longer accumulated.
+//! sticking.
+//!
+//! **The drop** (the one definition, used by `simulate`, `bench` and the tests): once the
+//! object has slid more than [`DROP_DISTANCE_M`] (10 mm) or turned more than
+//! [`DROP_ROTATION_RAD`] (0.2 rad) relative to the fingertips it is lost from the grasp
+//! ([`is_drop`]); the run reports `dropped = true` and the time (metric `dropped_at_s`),
+//! and slip is no longer accumulated.
 
 use crate::sim::controllers::{self, LinkKind};
 use crate::sim::effects::{LinkFate, Pipeline, World};
@@ -30,10 +35,28 @@ use softgrip::protocol::SensorFrame;
 use std::collections::{BTreeMap, VecDeque};
 use std::time::{Duration, Instant};
 
-/// Slip distance at which the object is lost from the grasp [m].
-pub const DROP_DISTANCE_M: f64 = 0.02;
-/// Slip rotation at which the object is lost from the grasp [rad].
-pub const DROP_ROTATION_RAD: f64 = 0.5;
+/// Slip distance beyond which the object is lost from the grasp [m] (10 mm).
+pub const DROP_DISTANCE_M: f64 = 0.01;
+/// Slip rotation beyond which the object is lost from the grasp [rad].
+pub const DROP_ROTATION_RAD: f64 = 0.2;
+
+/// Whether an object that has slid `slip_distance_m` [m] and turned `slip_rotation_rad`
+/// [rad] relative to the fingertips is dropped: more than [`DROP_DISTANCE_M`] or more
+/// than [`DROP_ROTATION_RAD`]. The only definition of a drop.
+pub fn is_drop(slip_distance_m: f64, slip_rotation_rad: f64) -> bool {
+    slip_distance_m > DROP_DISTANCE_M || slip_rotation_rad.abs() > DROP_ROTATION_RAD
+}
+
+/// How a run is carried out beyond its scene and controller.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions<'a> {
+    /// Skip the per-tick samples (`RunOutput::samples` stays empty and `surface` is not
+    /// computed): a run's memory then does not grow with its duration.
+    pub skip_samples: bool,
+    /// A ground truth already built for this scene (the same finger, skew and force
+    /// range), shared between runs instead of rebuilt.
+    pub truth: Option<&'a Truth>,
+}
 
 /// A finished run.
 #[derive(Debug)]
@@ -62,7 +85,8 @@ pub fn controller_config_for(
 ) -> Result<ControllerConfig, SceneError> {
     let d = ControllerConfig::default();
     let cfg = ControllerConfig {
-        mu: f.mu,
+        // The μ the controller believes; the ground truth uses the finger's.
+        mu: s.mu.unwrap_or(f.mu),
         shape: if f.shape == "disc" {
             FingerShape::Disc
         } else {
@@ -86,6 +110,8 @@ pub fn controller_config_for(
         fault_force_n: s.fault_force_n.unwrap_or(d.fault_force_n),
         force_range_n: s.force_range_n.unwrap_or(d.force_range_n),
         moment_range_nm: s.moment_range_nm.unwrap_or(d.moment_range_nm),
+        actuator_lag_s: s.actuator_lag_s.unwrap_or(d.actuator_lag_s),
+        actuator_slew_n_per_s: s.actuator_slew_n_per_s.unwrap_or(d.actuator_slew_n_per_s),
         mode: Mode::Ellipse,
         ..d
     };
@@ -112,6 +138,39 @@ pub fn run_on(
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
 ) -> Result<RunOutput, String> {
+    run_with(
+        scene,
+        text,
+        controller,
+        link_kind,
+        progress,
+        RunOptions::default(),
+    )
+}
+
+/// Builds the ground truth a run of `scene` uses (its force range follows from the
+/// scene's controller settings), for sharing between runs through [`RunOptions::truth`].
+pub fn build_truth(scene: &Scene) -> Result<Truth, String> {
+    let cfg = controller_config(scene).map_err(|e| e.to_string())?;
+    let pipeline = Pipeline::build(scene, None).map_err(|e| e.to_string())?;
+    Truth::build(
+        scene,
+        pipeline.true_skew(),
+        cfg.n_min_n * 0.05,
+        cfg.n_max_n * 1.5,
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// Runs `scene` against `controller` on `link_kind`, with `options`.
+pub fn run_with(
+    scene: &Scene,
+    text: Option<&str>,
+    controller: &str,
+    link_kind: &LinkKind,
+    progress: Option<&ProgressBar>,
+    options: RunOptions<'_>,
+) -> Result<RunOutput, String> {
     let wall = Instant::now();
     let cfg = controller_config(scene).map_err(|e| e.to_string())?;
     let constant_n = scene
@@ -120,13 +179,20 @@ pub fn run_on(
         .unwrap_or(cfg.fault_force_n);
     let mut pipeline = Pipeline::build(scene, text).map_err(|e| e.to_string())?;
     let has_actuator = pipeline.names().iter().any(|n| n == "actuator");
-    let truth = Truth::build(
-        scene,
-        pipeline.true_skew(),
-        cfg.n_min_n * 0.05,
-        cfg.n_max_n * 1.5,
-    )
-    .map_err(|e| e.to_string())?;
+    let built;
+    let truth = match options.truth {
+        Some(t) => t,
+        None => {
+            built = Truth::build(
+                scene,
+                pipeline.true_skew(),
+                cfg.n_min_n * 0.05,
+                cfg.n_max_n * 1.5,
+            )
+            .map_err(|e| e.to_string())?;
+            &built
+        }
+    };
     let mut ctl = controllers::build(controller, &cfg, constant_n, link_kind)?;
 
     let dt = 1.0 / scene.tick_hz;
@@ -142,7 +208,12 @@ pub fn run_on(
         normal_n: cfg.n_min_n,
         ..World::default()
     };
-    let mut samples = Vec::with_capacity(ticks as usize);
+    let mut samples = Vec::with_capacity(if options.skip_samples {
+        0
+    } else {
+        ticks as usize
+    });
+    let mut frames: Vec<(SensorFrame, LinkFate)> = Vec::with_capacity(4);
     let mut slip_seen: VecDeque<bool> = std::iter::repeat_n(false, detect_ticks).collect();
     let (mut v, mut omega, mut dist, mut rot) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (mut events, mut stuck_for) = (0u64, u64::MAX);
@@ -175,7 +246,8 @@ pub fn run_on(
         };
         pipeline.sense(&w, &mut frame);
         let sensed = frame;
-        let mut frames = vec![(frame, LinkFate::Deliver)];
+        frames.clear();
+        frames.push((frame, LinkFate::Deliver));
         pipeline.link(&mut frames);
 
         let t1 = Instant::now();
@@ -214,10 +286,8 @@ pub fn run_on(
                 events += 1;
             }
             stuck_for = 0;
-            if dist >= DROP_DISTANCE_M || rot >= DROP_ROTATION_RAD {
+            if is_drop(dist, rot) {
                 dropped_at = Some(w.t_s);
-                dist = dist.min(DROP_DISTANCE_M);
-                rot = rot.min(DROP_ROTATION_RAD);
             }
         } else if !dropped {
             v = 0.0;
@@ -225,6 +295,9 @@ pub fn run_on(
             stuck_for = stuck_for.saturating_add(1);
         }
         slip_seen.push_back(slipping);
+        // What the next tick's sensors can know of this one (the slip sensor).
+        w.true_utilisation = tl.utilisation;
+        w.sliding = slipping && !dropped;
         sum_n += w.normal_n;
         peak_n = peak_n.max(w.normal_n);
         if tl.utilisation.is_finite() {
@@ -232,24 +305,26 @@ pub fn run_on(
         }
         max_micro = max_micro.max(w.micro_slip_m);
         let [mx, my] = sensed.tangential_force_n;
-        samples.push(Sample {
-            t_s: w.t_s,
-            ft_n: ft,
-            mn_nm: mn,
-            ft_meas_n: f64::from(mx).hypot(f64::from(my)),
-            mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
-            n_cmd_n: w.command_n,
-            n_true_n: w.normal_n,
-            a_true_m: w.half_width_m,
-            f_norm: tl.f_norm,
-            m_norm: tl.m_norm,
-            pitch: tl.pitch,
-            utilisation: tl.utilisation,
-            slipping,
-            slip_distance_m: dist,
-            slip_rotation_rad: rot,
-            status,
-        });
+        if !options.skip_samples {
+            samples.push(Sample {
+                t_s: w.t_s,
+                ft_n: ft,
+                mn_nm: mn,
+                ft_meas_n: f64::from(mx).hypot(f64::from(my)),
+                mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
+                n_cmd_n: w.command_n,
+                n_true_n: w.normal_n,
+                a_true_m: w.half_width_m,
+                f_norm: tl.f_norm,
+                m_norm: tl.m_norm,
+                pitch: tl.pitch,
+                utilisation: tl.utilisation,
+                slipping,
+                slip_distance_m: dist,
+                slip_rotation_rad: rot,
+                status,
+            });
+        }
         core += t3.elapsed();
         if has_actuator {
             pipeline.actuate(&mut w);
@@ -294,11 +369,16 @@ pub fn run_on(
     if pipeline.names().iter().any(|n| n == "partial_slip") {
         metrics.insert("max_micro_slip_m".to_string(), max_micro);
     }
-    let surface = truth.normalised_surface(truth.half_width_m(mean_n.max(cfg.n_min_n)));
+    let surface = if options.skip_samples {
+        Vec::new()
+    } else {
+        truth.normalised_surface(truth.half_width_m(mean_n.max(cfg.n_min_n)))
+    };
     Ok(RunOutput {
         summary: RunSummary {
             scene: scene.name.clone(),
             controller: controller.to_string(),
+            dropped: dropped_at.is_some(),
             slip_events: events,
             slip_distance_m: dist,
             slip_rotation_rad: rot,

@@ -31,6 +31,9 @@
 //!
 //! [controller]             # softgrip's settings (all optional)
 //! safety = 1.3
+//! mu = 0.7                 # the μ the controller believes (default: [finger] mu, the true one)
+//! actuator_lag_s = 0.015   # the measured actuator lag [s] (default 0: no anticipation)
+//! actuator_slew_n_per_s = 300.0  # the measured slew limit [N/s] (default: unlimited)
 //!
 //! [effect.sensor_noise]    # settings of an effect (read only if it is listed)
 //! force_sd_n = 0.02
@@ -182,6 +185,14 @@ pub struct Phase {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ControllerSettings {
+    /// The friction coefficient the controller believes; default the finger's `mu`
+    /// (the true one, which the ground truth always uses).
+    pub mu: Option<f64>,
+    /// The actuator's lag as the integrator measured it [s] (softgrip commands ahead of
+    /// a rising load by about this much); default 0, no anticipation.
+    pub actuator_lag_s: Option<f64>,
+    /// The actuator's slew limit as measured [N/s]; default unlimited.
+    pub actuator_slew_n_per_s: Option<f64>,
     /// Safety factor.
     pub safety: Option<f64>,
     /// Least command [N].

@@ -25,6 +25,7 @@ pub mod partial_slip;
 pub mod sensor_faults;
 pub mod sensor_noise;
 pub mod skewed_pressure;
+pub mod slip_sensor;
 
 use crate::sim::scene::{Scene, SceneError};
 use rand::SeedableRng;
@@ -34,11 +35,12 @@ use softgrip::protocol::SensorFrame;
 use std::time::{Duration, Instant};
 
 /// Every effect a scene may list, in pipeline order.
-pub const NAMES: [&str; 10] = [
+pub const NAMES: [&str; 11] = [
     "gravity",
     "disturbance",
     "sensor_noise",
     "sensor_faults",
+    "slip_sensor",
     "link_latency",
     "link_faults",
     "actuator",
@@ -79,6 +81,11 @@ pub struct World {
     /// Tangential micro-displacement before gross slip (Eq. 5) [m], when partial slip
     /// is on.
     pub micro_slip_m: f64,
+    /// The true utilisation of the last tick's load (≥ 1 slips), for sensors that see
+    /// the contact itself (the slip sensor).
+    pub true_utilisation: f64,
+    /// Whether the object slid relative to the fingertips in the last tick.
+    pub sliding: bool,
 }
 
 impl World {
@@ -171,6 +178,7 @@ impl Pipeline {
                 "disturbance" => Box::new(disturbance::Disturbance::build(scene, text)?),
                 "sensor_noise" => Box::new(sensor_noise::SensorNoise::build(scene, text)?),
                 "sensor_faults" => Box::new(sensor_faults::SensorFaults::build(scene, text)?),
+                "slip_sensor" => Box::new(slip_sensor::SlipSensor::build(scene, text)?),
                 "link_latency" => Box::new(link_latency::LinkLatency::build(scene, text)?),
                 "link_faults" => Box::new(link_faults::LinkFaults::build(scene, text)?),
                 "actuator" => Box::new(actuator::Actuator::build(scene, text)?),

@@ -12,6 +12,7 @@
 #![forbid(unsafe_code)]
 
 pub mod accuracy;
+pub mod bench;
 pub mod fls_cmd;
 pub mod fls_plot;
 pub mod link;

@@ -6,7 +6,7 @@
 #![forbid(unsafe_code)]
 
 use clap::{Parser, Subcommand};
-use host_sim::{accuracy, fls_cmd, required_force_cmd, simulate_cmd, tables_cmd, CliError};
+use host_sim::{accuracy, bench, fls_cmd, required_force_cmd, simulate_cmd, tables_cmd, CliError};
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.
@@ -27,6 +27,9 @@ enum Command {
     Tables(tables_cmd::TablesArgs),
     /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
     RequiredForce(required_force_cmd::RequiredForceArgs),
+    /// Every controller over its knob on random trials of scene families: drops and
+    /// force over the oracle, tables, bench.json and Pareto plots.
+    Bench(bench::BenchArgs),
     /// Regenerate the accuracy/time report (accuracy.md, accuracy.svg).
     Accuracy(accuracy::AccuracyArgs),
 }
@@ -56,6 +59,7 @@ fn main() -> ExitCode {
         Command::Simulate(args) => simulate_cmd::run_cmd(&args),
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Tables(args) => tables_cmd::run(&args),
+        Command::Bench(args) => bench::run_cmd(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -56,6 +56,19 @@ pub struct RunOptions<'a> {
     /// A ground truth already built for this scene (the same finger, skew and force
     /// range), shared between runs instead of rebuilt.
     pub truth: Option<&'a Truth>,
+    /// Skip the wall-clock accounting (`step_cost_share`, `plant_step_s`,
+    /// `controller_and_link_s` come out zero): it reads the clock about ten times a tick.
+    pub untimed: bool,
+}
+
+/// Reads the clock unless `untimed`.
+fn now(untimed: bool) -> Option<Instant> {
+    (!untimed).then(Instant::now)
+}
+
+/// The time since `start`, zero when untimed.
+fn since(start: Option<Instant>) -> Duration {
+    start.map_or(Duration::ZERO, |s| s.elapsed())
 }
 
 /// A finished run.
@@ -178,6 +191,8 @@ pub fn run_with(
         .constant_force_n
         .unwrap_or(cfg.fault_force_n);
     let mut pipeline = Pipeline::build(scene, text).map_err(|e| e.to_string())?;
+    pipeline.set_timed(!options.untimed);
+    let untimed = options.untimed;
     let has_actuator = pipeline.names().iter().any(|n| n == "actuator");
     let built;
     let truth = match options.truth {
@@ -226,13 +241,13 @@ pub fn run_with(
     let period_us = (1e6 / scene.tick_hz).round().max(1.0) as u64;
 
     for k in 0..ticks {
-        let t0 = Instant::now();
+        let t0 = now(untimed);
         w.t_s = k as f64 * dt;
         w.force_n = [0.0, 0.0];
         w.moment_nm = 0.0;
         w.support_fraction = task::support_fraction(scene, w.t_s);
         task::apply(scene, &mut w);
-        core += t0.elapsed();
+        core += since(t0);
         pipeline.load(&mut w);
 
         let [fx, fy] = w.contact_force_n();
@@ -250,7 +265,7 @@ pub fn run_with(
         frames.push((frame, LinkFate::Deliver));
         pipeline.link(&mut frames);
 
-        let t1 = Instant::now();
+        let t1 = now(untimed);
         let seen = slip_seen.pop_front().unwrap_or(false);
         match ctl.tick(&frames, seen).map_err(|e| e.to_string())? {
             Some(a) => {
@@ -259,14 +274,14 @@ pub fn run_with(
             }
             None => missing += 1,
         }
-        control += t1.elapsed();
+        control += since(t1);
 
-        let t2 = Instant::now();
+        let t2 = now(untimed);
         w.half_width_eq_m = truth.half_width_m(w.normal_n);
         w.half_width_m = w.half_width_eq_m;
-        core += t2.elapsed();
+        core += since(t2);
         pipeline.contact(&mut w);
-        let t3 = Instant::now();
+        let t3 = now(untimed);
         let ft = fx.hypot(fy);
         let mn = w.contact_moment_nm().abs();
         let tl = truth.evaluate(ft, mn, w.normal_n, w.half_width_m);
@@ -325,7 +340,7 @@ pub fn run_with(
                 status,
             });
         }
-        core += t3.elapsed();
+        core += since(t3);
         if has_actuator {
             pipeline.actuate(&mut w);
         } else {

@@ -12,18 +12,19 @@ use softgrip::contact::ContactSize;
 use softgrip::controller::SkewParams;
 use softgrip::fls::AspectGrid;
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
+use std::sync::Arc;
 
 const ASPECTS: usize = 24;
 const SAMPLES: usize = 256;
 
-/// The true contact's limit surfaces.
-#[derive(Debug)]
+/// The true contact's limit surfaces (cheap to clone: the surfaces are shared).
+#[derive(Debug, Clone)]
 pub struct Truth {
     mu: f64,
     half_length_m: f64,
     rect: bool,
     contact: ContactSize<f64>,
-    grid: Box<AspectGrid<f64, ASPECTS, { SAMPLES + 1 }>>,
+    grid: Arc<AspectGrid<f64, ASPECTS, { SAMPLES + 1 }>>,
 }
 
 /// The true state of the contact at one step.
@@ -75,8 +76,19 @@ impl Truth {
             half_length_m: f.half_length_m,
             rect,
             contact,
-            grid: Box::new(grid),
+            grid: Arc::new(grid),
         })
+    }
+
+    /// The same surfaces with another true friction coefficient `mu` [-] (the surfaces in
+    /// `(f̃, m̃)` do not depend on μ).
+    pub fn with_mu(&self, mu: f64) -> Self {
+        Self { mu, ..self.clone() }
+    }
+
+    /// The true friction coefficient [-].
+    pub fn mu(&self) -> f64 {
+        self.mu
     }
 
     /// The equilibrium half-width `c·N^γ` [m].

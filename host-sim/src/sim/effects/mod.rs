@@ -162,6 +162,7 @@ pub fn check_keys(scene: &Scene, effect: &str, known: &[&str]) -> Result<(), Sce
 pub struct Pipeline {
     effects: Vec<Box<dyn Effect>>,
     cost: Vec<Duration>,
+    timed: bool,
 }
 
 impl Pipeline {
@@ -190,7 +191,11 @@ impl Pipeline {
             effects.push(e);
         }
         let cost = vec![Duration::ZERO; effects.len()];
-        Ok(Self { effects, cost })
+        Ok(Self {
+            effects,
+            cost,
+            timed: true,
+        })
     }
 
     /// The names of the built effects, in order.
@@ -203,7 +208,19 @@ impl Pipeline {
         self.effects.iter().find_map(|e| e.true_skew())
     }
 
+    /// Whether to time each effect (on by default; a clock reading costs about 60 ns,
+    /// more than most effects' steps, so the bench turns it off).
+    pub fn set_timed(&mut self, timed: bool) {
+        self.timed = timed;
+    }
+
     fn each(&mut self, mut f: impl FnMut(&mut dyn Effect)) {
+        if !self.timed {
+            for e in &mut self.effects {
+                f(e.as_mut());
+            }
+            return;
+        }
         for (e, c) in self.effects.iter_mut().zip(self.cost.iter_mut()) {
             let start = Instant::now();
             f(e.as_mut());

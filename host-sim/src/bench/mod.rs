@@ -1,0 +1,226 @@
+//! `host-sim bench`: every controller, swept over its knob, on random trials of scene
+//! families, against the oracle force; drop rates with Wilson intervals, force over the
+//! oracle, Pareto plots.
+//!
+//! - [`families`]: the trial generators and their ranges;
+//! - [`oracle`]: the least force that holds each tick's true load;
+//! - [`sweep`]: the controllers' knobs, one trial's runs, the summary rows;
+//! - [`report`]: text tables and `bench.json`; [`plot`]: the Pareto plots.
+//!
+//! Trials run in parallel (rayon), each run without per-tick samples (unless `--trace`),
+//! softgrip on the direct in-memory link by default.
+
+pub mod families;
+pub mod oracle;
+pub mod plot;
+pub mod report;
+pub mod sweep;
+
+use crate::sim::controllers::LinkKind;
+use crate::sim::run::{self, RunOptions};
+use crate::CliError;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use sweep::{Row, Sweep, TrialResult, SWEEPS};
+
+/// Arguments of `host-sim bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// A family (lift-hold, shake, twist, mu-mismatch, faults) or all.
+    #[arg(long, default_value = "all")]
+    pub family: String,
+    /// Trials per family.
+    #[arg(long, default_value_t = 200)]
+    pub trials: usize,
+    /// Seed of the trials.
+    #[arg(long, default_value_t = 17)]
+    pub seed: u64,
+    /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
+    /// slip-servo) or all.
+    #[arg(long, default_value = "all")]
+    pub controller: String,
+    /// Output directory (bench.json, pareto-FAMILY.svg/.png, trace/).
+    #[arg(long, default_value = "bench-out")]
+    pub out: PathBuf,
+    /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
+    /// sample of trials also runs over the pseudo-terminal and must give identical
+    /// results).
+    #[arg(long, default_value = "direct")]
+    pub link: String,
+    /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
+    #[arg(long)]
+    pub trace: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Trials per family that `--link pty` also runs over the pty and compares.
+pub const PTY_SAMPLE: usize = 3;
+
+/// The families and sweeps an argument list selects.
+pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), CliError> {
+    let families: Vec<&'static str> = if args.family == "all" {
+        families::NAMES.to_vec()
+    } else {
+        vec![*families::NAMES
+            .iter()
+            .find(|n| **n == args.family)
+            .ok_or_else(|| {
+                CliError::Usage(format!(
+                    "--family: unknown family \"{}\", expected all or one of {}",
+                    args.family,
+                    families::NAMES.join(", ")
+                ))
+            })?]
+    };
+    let sweeps: Vec<Sweep> = if args.controller == "all" {
+        SWEEPS.to_vec()
+    } else {
+        vec![*SWEEPS
+            .iter()
+            .find(|s| s.controller == args.controller)
+            .ok_or_else(|| {
+                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
+                CliError::Usage(format!(
+                    "--controller: unknown controller \"{}\", expected all or one of {}",
+                    args.controller,
+                    names.join(", ")
+                ))
+            })?]
+    };
+    Ok((families, sweeps))
+}
+
+/// Runs the trials `0..trials` of `family`, in parallel, in index order.
+pub fn run_family(
+    family: &str,
+    seed: u64,
+    trials: usize,
+    sweeps: &[Sweep],
+    link: &LinkKind,
+    trace: Option<&Path>,
+    bar: &ProgressBar,
+) -> Result<Vec<TrialResult>, String> {
+    let first = families::trial(family, seed, 0).ok_or("no such family")?;
+    // Every trial of a family has the same finger and force range, so one ground truth
+    // serves them all (each trial sets its own true μ).
+    let truth = run::build_truth(&first.scene)?;
+    (0..trials)
+        .into_par_iter()
+        .map(|i| {
+            let t = families::trial(family, seed, i)
+                .ok_or_else(|| format!("{family}: trial {i} could not be built"))?;
+            let r = sweep::run_trial(&t, &truth, sweeps, link, trace);
+            bar.inc(1);
+            r
+        })
+        .collect()
+}
+
+/// Runs the first [`PTY_SAMPLE`] trials of `family` with softgrip (both modes, default
+/// knob) over the pty and over the direct link, and checks that the summaries agree.
+fn check_pty(family: &str, seed: u64) -> Result<(), String> {
+    for i in 0..PTY_SAMPLE {
+        let t = families::trial(family, seed, i).ok_or("no such family")?;
+        for c in ["softgrip", "softgrip-table"] {
+            let opts = RunOptions {
+                skip_samples: true,
+                truth: None,
+                untimed: true,
+            };
+            let d = run::run_with(&t.scene, None, c, &LinkKind::Direct, None, opts)?.summary;
+            let p = run::run_with(&t.scene, None, c, &LinkKind::InProcess, None, opts)?.summary;
+            let same = d.dropped == p.dropped
+                && d.slip_events == p.slip_events
+                && d.slip_distance_m.to_bits() == p.slip_distance_m.to_bits()
+                && d.mean_normal_force_n.to_bits() == p.mean_normal_force_n.to_bits()
+                && d.peak_normal_force_n.to_bits() == p.peak_normal_force_n.to_bits();
+            if !same {
+                return Err(format!(
+                    "{family} trial {i}, {c}: the pty link and the direct link disagree \
+                     (mean force {} against {})",
+                    p.mean_normal_force_n, d.mean_normal_force_n
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `host-sim bench`.
+pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
+    let (families, sweeps) = selection(args)?;
+    if args.trials == 0 {
+        return Err(CliError::Usage("--trials: must be at least 1".into()));
+    }
+    let pty = match args.link.as_str() {
+        "direct" => false,
+        "pty" => true,
+        other => {
+            return Err(CliError::Usage(format!(
+                "--link: \"{other}\" is not a link, expected direct or pty"
+            )))
+        }
+    };
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
+    let bar = if args.quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new((args.trials * families.len()) as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} trials {msg} [{elapsed}<{eta}]")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut all: Vec<Row> = Vec::new();
+    for family in &families {
+        bar.set_message(family.to_string());
+        let trace = if args.trace {
+            let dir = args.out.join("trace").join(family);
+            std::fs::create_dir_all(&dir)
+                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", dir.display())))?;
+            Some(dir)
+        } else {
+            None
+        };
+        let results = run_family(
+            family,
+            args.seed,
+            args.trials,
+            &sweeps,
+            &LinkKind::Direct,
+            trace.as_deref(),
+            &bar,
+        )
+        .map_err(CliError::Failed)?;
+        if pty {
+            check_pty(family, args.seed).map_err(CliError::Failed)?;
+        }
+        let rows = sweep::rows(family, &sweeps, &results);
+        bar.suspend(|| println!("{}", report::family_table(family, &rows)));
+        plot::write_pareto(&args.out, family, &rows).map_err(CliError::Failed)?;
+        all.extend(rows);
+    }
+    bar.finish_and_clear();
+    if pty {
+        println!(
+            "pty check: the first {PTY_SAMPLE} trials of each family gave identical results \
+             over the pty and the direct link (softgrip, both modes)"
+        );
+    }
+    report::write_json(
+        &args.out.join("bench.json"),
+        args.seed,
+        args.trials,
+        &args.link,
+        &all,
+    )
+    .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}

@@ -1,0 +1,266 @@
+//! Each controller swept over its own knob, on every trial of a family, and the rows of
+//! the summary: drops (with a Wilson 95 % interval), force over the oracle, slip.
+
+use super::families::Trial;
+use super::oracle;
+use crate::sim::controllers::LinkKind;
+use crate::sim::report;
+use crate::sim::run::{self, RunOptions};
+use crate::sim::scene::Scene;
+use crate::sim::truth::Truth;
+use serde::Serialize;
+use std::path::Path;
+
+/// A controller and the knob it is swept over.
+#[derive(Debug, Clone, Copy)]
+pub struct Sweep {
+    /// Controller name (as `simulate --controller` takes it).
+    pub controller: &'static str,
+    /// The knob's name.
+    pub knob: &'static str,
+    /// Its values, in increasing order.
+    pub values: &'static [f64],
+    /// The controller's default value of the knob.
+    pub default: f64,
+}
+
+/// Safety factors swept for softgrip (default 1.3).
+const SOFTGRIP_SAFETY: &[f64] = &[1.0, 1.15, 1.3, 1.5, 2.0];
+/// Safety factors swept for the model-based baselines (default 1.3, as softgrip's).
+const BASELINE_SAFETY: &[f64] = &[1.0, 1.3, 1.6, 2.0, 3.0];
+
+/// Every controller with its knob, in the order of the tables.
+pub const SWEEPS: [Sweep; 7] = [
+    Sweep {
+        controller: "softgrip",
+        knob: "safety",
+        values: SOFTGRIP_SAFETY,
+        default: 1.3,
+    },
+    Sweep {
+        controller: "softgrip-table",
+        knob: "safety",
+        values: SOFTGRIP_SAFETY,
+        default: 1.3,
+    },
+    Sweep {
+        controller: "constant",
+        knob: "force_n",
+        values: &[2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0],
+        default: 10.0,
+    },
+    Sweep {
+        controller: "coulomb",
+        knob: "safety",
+        values: BASELINE_SAFETY,
+        default: 1.3,
+    },
+    Sweep {
+        controller: "box",
+        knob: "safety",
+        values: BASELINE_SAFETY,
+        default: 1.3,
+    },
+    Sweep {
+        controller: "fixed-torsion",
+        knob: "safety",
+        values: BASELINE_SAFETY,
+        default: 1.3,
+    },
+    // The slip servo has no model to scale: its knob is the force it relaxes to.
+    Sweep {
+        controller: "slip-servo",
+        knob: "floor_n",
+        values: &[0.2, 1.0, 2.0, 4.0],
+        default: 0.2,
+    },
+];
+
+/// `scene` with the controller's knob set to `value`.
+pub fn with_knob(scene: &Scene, controller: &str, value: f64) -> Scene {
+    let mut s = scene.clone();
+    match controller {
+        "constant" => s.controller.constant_force_n = Some(value),
+        "slip-servo" => s.controller.n_min_n = Some(value),
+        _ => s.controller.safety = Some(value),
+    }
+    s
+}
+
+/// One run of one trial.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RunRow {
+    /// Dropped ([`run::is_drop`]).
+    pub dropped: bool,
+    /// Slip episodes.
+    pub slip_events: u64,
+    /// Slip distance [m].
+    pub slip_distance_m: f64,
+    /// Time-averaged normal force [N].
+    pub mean_force_n: f64,
+    /// Peak normal force [N].
+    pub peak_force_n: f64,
+}
+
+/// One trial against every controller and knob value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrialResult {
+    /// Whether `constant` at the scene's `N_max` holds it.
+    pub holdable: bool,
+    /// The oracle's time-averaged force [N].
+    pub oracle_mean_n: f64,
+    /// One row per (sweep, value), in [`SWEEPS`] order.
+    pub runs: Vec<RunRow>,
+}
+
+/// Runs `trial` against every sweep in `sweeps` on `link`; `truth` is the family's
+/// ground truth (its μ is replaced by the trial's true μ). With `trace`, each run's
+/// per-tick samples are written as CSV under that directory.
+pub fn run_trial(
+    trial: &Trial,
+    truth: &Truth,
+    sweeps: &[Sweep],
+    link: &LinkKind,
+    trace: Option<&Path>,
+) -> Result<TrialResult, String> {
+    let scene = &trial.scene;
+    let truth = truth.with_mu(scene.finger.mu);
+    let cfg = run::controller_config(scene).map_err(|e| e.to_string())?;
+    let oracle_mean_n = oracle::mean_oracle_force_n(scene, &truth, cfg.n_min_n, cfg.n_max_n)?;
+    let options = RunOptions {
+        skip_samples: trace.is_none(),
+        truth: Some(&truth),
+        untimed: true,
+    };
+    let one = |s: &Scene, controller: &str, tag: &str| -> Result<RunRow, String> {
+        let out = run::run_with(s, None, controller, link, None, options)?;
+        if let Some(dir) = trace {
+            let path = dir.join(format!("{:04}-{controller}-{tag}.csv", trial.index));
+            report::write_csv(&path, &out.samples).map_err(|e| e.to_string())?;
+        }
+        let m = &out.summary;
+        Ok(RunRow {
+            dropped: m.dropped,
+            slip_events: m.slip_events,
+            slip_distance_m: m.slip_distance_m,
+            mean_force_n: m.mean_normal_force_n,
+            peak_force_n: m.peak_normal_force_n,
+        })
+    };
+    let full = with_knob(scene, "constant", cfg.n_max_n);
+    let holdable = !one(&full, "constant", "holdable")?.dropped;
+    let mut runs = Vec::new();
+    for sw in sweeps {
+        for &v in sw.values {
+            runs.push(one(
+                &with_knob(scene, sw.controller, v),
+                sw.controller,
+                &format!("{}{v}", sw.knob),
+            )?);
+        }
+    }
+    Ok(TrialResult {
+        holdable,
+        oracle_mean_n,
+        runs,
+    })
+}
+
+/// One row of `bench.json`: one family, controller and knob value over all trials.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// Family.
+    pub family: String,
+    /// Controller.
+    pub controller: String,
+    /// The knob's name.
+    pub knob: String,
+    /// The knob's value (safety factor [-], force [N] or floor force [N]).
+    pub knob_value: f64,
+    /// Whether this is the controller's default.
+    pub default: bool,
+    /// Trials run.
+    pub trials: usize,
+    /// Trials that `constant` at `N_max` holds.
+    pub holdable: usize,
+    /// Trials dropped.
+    pub drops: usize,
+    /// Holdable trials dropped.
+    pub drops_holdable: usize,
+    /// `drops/trials`.
+    pub drop_rate: f64,
+    /// Wilson score 95 % interval of the drop rate, `[low, high]`.
+    pub drop_rate_ci95: [f64; 2],
+    /// Mean over trials of (time-averaged force / oracle's time-averaged force) [-].
+    pub force_over_oracle: f64,
+    /// Mean over trials of the time-averaged normal force [N].
+    pub mean_force_n: f64,
+    /// Mean over trials of the peak normal force [N].
+    pub peak_force_n: f64,
+    /// Mean over trials of the slip distance [m].
+    pub slip_distance_m: f64,
+    /// Mean over trials of the slip episodes.
+    pub slip_events: f64,
+}
+
+/// The Wilson score interval at 95 % for `k` successes in `n` trials.
+pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
+    if n == 0 {
+        return [0.0, 1.0];
+    }
+    let z = 1.959_963_984_540_054_f64;
+    let (n, p) = (n as f64, k as f64 / n as f64);
+    let denom = 1.0 + z * z / n;
+    let centre = (p + z * z / (2.0 * n)) / denom;
+    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denom;
+    [(centre - half).max(0.0), (centre + half).min(1.0)]
+}
+
+/// The rows of one family from its trials' results, in [`SWEEPS`] order.
+pub fn rows(family: &str, sweeps: &[Sweep], results: &[TrialResult]) -> Vec<Row> {
+    let mut out = Vec::new();
+    let mut col = 0;
+    let n = results.len();
+    let holdable = results.iter().filter(|r| r.holdable).count();
+    for sw in sweeps {
+        for &v in sw.values {
+            let (mut drops, mut drops_h) = (0, 0);
+            let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            for r in results {
+                let run = &r.runs[col];
+                if run.dropped {
+                    drops += 1;
+                    if r.holdable {
+                        drops_h += 1;
+                    }
+                }
+                ratio += run.mean_force_n / r.oracle_mean_n;
+                force += run.mean_force_n;
+                peak += run.peak_force_n;
+                slip += run.slip_distance_m;
+                events += run.slip_events as f64;
+            }
+            let mean = |x: f64| if n > 0 { x / n as f64 } else { 0.0 };
+            out.push(Row {
+                family: family.to_string(),
+                controller: sw.controller.to_string(),
+                knob: sw.knob.to_string(),
+                knob_value: v,
+                default: v == sw.default,
+                trials: n,
+                holdable,
+                drops,
+                drops_holdable: drops_h,
+                drop_rate: mean(drops as f64),
+                drop_rate_ci95: wilson95(drops, n),
+                force_over_oracle: mean(ratio),
+                mean_force_n: mean(force),
+                peak_force_n: mean(peak),
+                slip_distance_m: mean(slip),
+                slip_events: mean(events),
+            });
+            col += 1;
+        }
+    }
+    out
+}

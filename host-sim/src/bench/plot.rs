@@ -40,7 +40,7 @@ fn draw<DB: DrawingBackend>(
         * 1.08;
     let mut chart = ChartBuilder::on(root)
         .caption(
-            format!("{family}: drop rate against force (Pareto; * = default)"),
+            format!("{family}: drop rate against force (ringed: each controller's default)"),
             ("sans-serif", 24),
         )
         .margin(20)

@@ -42,7 +42,7 @@ pub struct BenchArgs {
     /// slip-servo) or all.
     #[arg(long, default_value = "all")]
     pub controller: String,
-    /// Output directory (bench.json, pareto-FAMILY.svg/.png, trace/).
+    /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
     /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
@@ -201,6 +201,14 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
         if pty {
             check_pty(family, args.seed).map_err(CliError::Failed)?;
         }
+        report::write_trials_csv(
+            &args.out.join(format!("trials-{family}.csv")),
+            family,
+            args.seed,
+            &sweeps,
+            &results,
+        )
+        .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
         let rows = sweep::rows(family, &sweeps, &results);
         bar.suspend(|| println!("{}", report::family_table(family, &rows)));
         plot::write_pareto(&args.out, family, &rows).map_err(CliError::Failed)?;

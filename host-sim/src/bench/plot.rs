@@ -32,7 +32,13 @@ fn draw<DB: DrawingBackend>(
         .map(|r| r.force_over_oracle)
         .filter(|x| x.is_finite())
         .fold(1.0_f64, f64::max)
-        * 1.05;
+        * 1.1;
+    let x_min = rows
+        .iter()
+        .map(|r| r.force_over_oracle)
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .fold(1.0_f64, f64::min)
+        * 0.9;
     let y_max = rows
         .iter()
         .map(|r| 100.0 * r.drop_rate)
@@ -46,10 +52,10 @@ fn draw<DB: DrawingBackend>(
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(65)
-        .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
+        .build_cartesian_2d((x_min..x_max).log_scale(), 0.0..y_max)?;
     chart
         .configure_mesh()
-        .x_desc("mean normal force / oracle's mean force [-]")
+        .x_desc("mean normal force / oracle's mean force [-] (log scale)")
         .y_desc("trials dropped [%]")
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 18))

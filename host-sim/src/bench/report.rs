@@ -66,3 +66,48 @@ pub fn write_json(
     let text = serde_json::to_string_pretty(&v).map_err(std::io::Error::other)?;
     std::fs::write(path, text + "\n")
 }
+
+/// Writes `trials-FAMILY.csv`: one line per trial, controller and knob value, with the
+/// trial's true μ [-], whether it lists the slip sensor, whether it is holdable and its
+/// oracle force [N], then the run's drop, slip events, slip distance [m], mean and peak
+/// force [N].
+pub fn write_trials_csv(
+    path: &Path,
+    family: &str,
+    seed: u64,
+    sweeps: &[super::sweep::Sweep],
+    results: &[super::sweep::TrialResult],
+) -> std::io::Result<()> {
+    let mut s = String::from(
+        "trial,true_mu,slip_sensor,holdable,oracle_mean_n,controller,knob_value,dropped,\
+         slip_events,slip_distance_m,mean_force_n,peak_force_n\n",
+    );
+    for (i, r) in results.iter().enumerate() {
+        let (mu, sensor) = super::families::trial(family, seed, i).map_or((f64::NAN, false), |t| {
+            (
+                t.scene.finger.mu,
+                t.scene.effects.iter().any(|e| e == "slip_sensor"),
+            )
+        });
+        let mut col = 0;
+        for sw in sweeps {
+            for &v in sw.values {
+                let run = &r.runs[col];
+                col += 1;
+                let _ = writeln!(
+                    s,
+                    "{i},{mu},{sensor},{},{},{},{v},{},{},{},{},{}",
+                    r.holdable,
+                    r.oracle_mean_n,
+                    sw.controller,
+                    run.dropped,
+                    run.slip_events,
+                    run.slip_distance_m,
+                    run.mean_force_n,
+                    run.peak_force_n
+                );
+            }
+        }
+    }
+    std::fs::write(path, s)
+}

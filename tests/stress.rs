@@ -1,6 +1,6 @@
 //! Hard cases for the numerics, table-driven: every case asserts a finite result within a
 //! stated tolerance of a reference (a closed form written in `tests/common/stress_cases.rs`
-//! from MODEL.md, an asymptotic law, the brute force of `tests/common/brute_force.rs`, or
+//! from docs/model.md, an asymptotic law, the brute force of `tests/common/brute_force.rs`, or
 //! the same integral at the highest quadrature order).
 //!
 //! The domain's corners: `k` from 1 to 1e6 and `∞`; skew `Δ/a` up to 0.999999; the centre of
@@ -289,7 +289,7 @@ fn far_field_moment_falls_like_the_second_moment_over_d() {
             rows.push(Row::tol(format!("disc k={k:e} d={d:e} f"), p.f, 1.0, 1e-12));
         }
     }
-    // The moments themselves: the symmetric E[y²] is MODEL.md's 1/4 for k = 2 (Hertz strip)
+    // The moments themselves: the symmetric E[y²] is docs/model.md's 1/4 for k = 2 (Hertz strip)
     // and 1/3 for uniform pressure.
     assert!((rect_y_moment(2.0, 0.0, 2) - 0.25).abs() < 1e-15);
     assert!((rect_y_moment(f64::INFINITY, 0.0, 2) - 1.0 / 3.0).abs() < 1e-15);
@@ -525,7 +525,16 @@ fn cfg_for(shape: FingerShape, gamma: f64, mode: Mode) -> ControllerConfig {
     }
 }
 
-/// `N_req(s)` for a disc with `a = c·√N` in ellipse mode: the root of
+/// The demand scale `(1/A, 1/B)` of a controller: ellipse mode tests the load against the
+/// ellipse `x²/A² + y²/B² ≤ 1` inscribed in the exact surface, which is Eq. 10's unit
+/// circle applied to the load `(f/A, m/B)`; `(1, 1)` in table mode.
+fn demand_scale(c: &Controller<f64>) -> (f64, f64) {
+    let [sf, sm] = c.capacity().demand_scale();
+    (sf, sm)
+}
+
+/// `N_req(s)` for a disc with `a = c·√N` in ellipse mode, for the load as the test sees
+/// it (`f`, `m` already times the demand scale): the root of
 /// `N³ − F²N − (M/(c·pitch))² = 0` (Newton from above, converged to the last bit).
 fn disc_half_gamma_ellipse(cfg: &ControllerConfig, f: f64, m: f64, s: f64) -> f64 {
     let (ff, mm) = (
@@ -544,9 +553,12 @@ fn disc_half_gamma_ellipse(cfg: &ControllerConfig, f: f64, m: f64, s: f64) -> f6
 }
 
 /// The rule at `γ = 0` and `γ = 1/2` on both shapes, in both modes, against references
-/// without any grid: the closed form of a fixed rectangle (`N = s·|(F, M/(c·pitch))|`,
-/// pitch at order 128), the cubic of the disc with `a ∝ √N`, and the bisection of
-/// `exact_required` for table mode.
+/// without any grid: the closed form of a fixed rectangle
+/// (`N = s·|(F/A, M/(c·pitch·B))|`, pitch at order 128), the cubic of the disc with
+/// `a ∝ √N`, and the bisection of `exact_required` (ellipse mode on the rectangle with
+/// `γ = 1/2`; table mode). Ellipse mode's references use the controller's own inscribed
+/// semi-axes `(A, B)` (`demand_scale()` is `(1/A, 1/B)`): the load `(f/A, m/B)` against the
+/// unit circle.
 ///
 /// Tolerances and their sign: a fixed contact has an exact arm, so the answer is exact to
 /// the solver's 8 ulp (1e-12 relative). With `γ = 1/2` the arm is interpolated linearly
@@ -575,6 +587,13 @@ fn the_rule_at_gamma_zero_and_one_half_on_both_shapes() {
                 let cfg = cfg_for(shape, gamma, mode);
                 let c = Controller::<f64>::new(cfg).unwrap();
                 let s = cfg.safety;
+                let (sf, sm) = demand_scale(&c);
+                if mode == Mode::Table {
+                    assert_eq!((sf, sm), (1.0, 1.0), "table mode scales no demand");
+                } else {
+                    // Inscribed in the exact surface, which crosses the axes at 1.
+                    assert!(sf >= 1.0 && sm >= 1.0, "{shape:?} γ={gamma}: {sf} {sm}");
+                }
                 for &(f, m) in &loads {
                     let got = c.required_force(f, m, s).unwrap().force_n;
                     let (want, tol) = match (shape, gamma == 0.0, mode) {
@@ -589,18 +608,23 @@ fn the_rule_at_gamma_zero_and_one_half_on_both_shapes() {
                                 REFERENCE_ORDER,
                             )
                             .pitch();
-                            let want = s * (f / cfg.mu).hypot(m / (cfg.mu * a * pitch));
+                            let want =
+                                s * (f * sf / cfg.mu).hypot(m * sm / (cfg.mu * a * pitch));
                             (want, 1e-12)
                         }
                         (FingerShape::Disc, true, Mode::Ellipse) => {
                             let a = cfg.c_m_per_n_gamma;
-                            let want = s * (f / cfg.mu).hypot(m / (cfg.mu * a * disc_pitch(cfg.k)));
+                            let want = s
+                                * (f * sf / cfg.mu)
+                                    .hypot(m * sm / (cfg.mu * a * disc_pitch(cfg.k)));
                             (want, 1e-12)
                         }
                         (FingerShape::Disc, _, Mode::Ellipse) => {
-                            (disc_half_gamma_ellipse(&cfg, f, m, s), 3.1e-4)
+                            (disc_half_gamma_ellipse(&cfg, f * sf, m * sm, s), 3.1e-4)
                         }
-                        _ => (exact_required(&cfg, f, m, s), 3e-3),
+                        // Eq. 10 at the scaled load in ellipse mode (sf = sm = 1 in table
+                        // mode, where `exact_required` reads the 1024-sample surface).
+                        _ => (exact_required(&cfg, f * sf, m * sm, s), 3e-3),
                     };
                     let rel = (got - want) / want;
                     let name = format!("{shape:?} γ={gamma} {mode:?} load ({f}, {m})");
@@ -660,8 +684,12 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
                 let c64 = Controller::<f64>::new(cfg).unwrap();
                 let c32 = Controller::<f32>::new_precomputed_in::<f64>(cfg).unwrap();
                 let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, gamma).unwrap();
-                // Pure translations: in ellipse mode `N = s·f_t/μ` exactly, whatever the arm.
+                let (sf, sm) = demand_scale(&c64);
+                // Pure translations: in ellipse mode `N = s·f_t/(μ·A)` exactly, whatever
+                // the arm (`A` the inscribed force semi-axis: `1/A` is the f32 controller's
+                // own stored scale in f32, rounded from the f64 fit).
                 if mode == Mode::Ellipse {
+                    let sf32 = f64::from(c32.capacity().demand_scale()[0]);
                     for n in [1.2e-9, 1.6e-9, 3e-9, 1e-8, 1e-7, 1e-6, 1.0, 5e5] {
                         let f = n * cfg.mu / cfg.safety;
                         let got = f64::from(
@@ -669,23 +697,25 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
                                 .unwrap()
                                 .force_n,
                         );
+                        let want = n * sf32;
                         rows.push(Row::band(
-                            format!("{shape:?} γ={gamma:.3} translation N={n:e} f32"),
-                            got / n - 1.0,
+                            format!("{shape:?} γ={gamma:.3} translation N={want:e} f32"),
+                            got / want - 1.0,
                             0.0,
                             -1e-6,
-                            if n < 5e-9 {
+                            if want < 5e-9 {
                                 1e-2
-                            } else if n < 5e-8 {
+                            } else if want < 5e-8 {
                                 1e-4
                             } else {
                                 1e-6
                             },
                         ));
                         let got = c64.required_force(f, 0.0, cfg.safety).unwrap().force_n;
+                        let want = n * sf;
                         rows.push(Row::tol(
-                            format!("{shape:?} γ={gamma:.3} translation N={n:e} f64"),
-                            got / n - 1.0,
+                            format!("{shape:?} γ={gamma:.3} translation N={want:e} f64"),
+                            got / want - 1.0,
                             0.0,
                             1e-13,
                         ));
@@ -696,7 +726,8 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
                     // torsion the contact at `n` can carry.
                     let a = contact.half_width_m(n);
                     let (f, m) = (0.4 * cfg.mu * n, 0.3 * cfg.mu * n * a);
-                    let want = exact_required(&cfg, f, m, cfg.safety);
+                    // Ellipse mode: Eq. 10 at the scaled load (sf = sm = 1 in table mode).
+                    let want = exact_required(&cfg, f * sf, m * sm, cfg.safety);
                     let got = c64.required_force(f, m, cfg.safety).unwrap().force_n;
                     let got32 = f64::from(
                         c32.required_force(f as f32, m as f32, cfg.safety as f32)
@@ -706,7 +737,7 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
                     let name = format!("{shape:?} γ={gamma:.3} {mode:?} N≈{n:e}");
                     let (lo, hi) = match mode {
                         Mode::Ellipse => (-1e-9, 9.4e-3),
-                        Mode::Table => (-7e-3, 1.5e-2),
+                        Mode::Table => (-1e-6, 1e-6),
                     };
                     rows.push(Row::band(
                         format!("{name} f64 vs grid-free"),
@@ -741,8 +772,9 @@ fn meas(f: f64, m: f64, n: f64, t: u64) -> Measurement<f64> {
 
 /// Zero loads ask for nothing, hold with utilisation 0 and let the command relax to `N_min`;
 /// a load on no normal force gets the utilisation cap; loads no force up to `N_max` can hold
-/// are `Saturated` at `N_max` with the above-grid closed form `|(F, M/R(N_max))|` (ellipse)
-/// as their finite requirement, up to the largest loads the sensor range admits.
+/// are `Saturated` at `N_max` with the above-grid closed form `|(F/A, M/(R(N_max)·B))|`
+/// (ellipse mode, with its inscribed semi-axes `(A, B)`) as their finite requirement, up to
+/// the largest loads the sensor range admits.
 #[test]
 fn zero_loads_and_loads_no_force_can_hold() {
     for (name, cfg) in [
@@ -826,9 +858,11 @@ fn zero_loads_and_loads_no_force_can_hold() {
             assert!(o.utilisation > 1.0 && o.utilisation.is_finite(), "{name}");
             assert!(o.command_n <= cfg.n_max_n, "{name}");
             if cfg.mode == Mode::Ellipse {
-                // Above the grid the arm is R(N_max): N = |(F, M/R)|, scaled by s.
+                // Above the grid the arm is R(N_max): N = |(F/A, M/(R·B))|, scaled by s,
+                // with the controller's inscribed semi-axes (A, B).
                 let r = *c.capacity().arms_m().last().unwrap();
-                let want = cfg.safety * (f / cfg.mu).hypot(m / (cfg.mu * r));
+                let (sf, sm) = demand_scale(&c);
+                let want = cfg.safety * (f * sf / cfg.mu).hypot(m * sm / (cfg.mu * r));
                 assert!(
                     (o.required_n / want - 1.0).abs() < 1e-14,
                     "{name} ({f}, {m}): {} vs {want}",

@@ -109,7 +109,7 @@ fn samples(v: &serde_json::Value) -> Vec<(f64, f64, f64)> {
 /// centres of rotation: all finite, with the closed forms where they exist.
 #[test]
 fn fls_at_the_corners_of_the_domain_gives_finite_answers() {
-    // The disc's closed-form pitch at k = 1 and uniform (MODEL.md: 2/3), and the edge and
+    // The disc's closed-form pitch at k = 1 and uniform (docs/model.md: 2/3), and the edge and
     // far-field points of the extreme aspects.
     // k = 1: B(3, 2)/B(2, 2) = (1/12)/(1/6) = 1/2.
     let v = fls(&["--shape", "disc", "--k", "1", "--at", "0,1,1e12"]).unwrap();

@@ -1,6 +1,6 @@
 //! The firmware in QEMU: boots the Cortex-M4F build on the `netduinoplus2` machine with
 //! its USART on a host pseudo-terminal (`-serial pty`) and instructions counted exactly
-//! (`-icount shift=0`), and talks to it over that pty (FIRMWARE.md).
+//! (`-icount shift=0`), and talks to it over that pty (docs/firmware.md).
 
 use super::{Framed, Link, LinkError};
 use serialport::TTYPort;

@@ -139,9 +139,15 @@ impl QemuLink {
 
     /// Asks the firmware to stop with `code` and returns QEMU's exit code.
     pub fn shutdown(mut self, code: u8) -> Result<i32, LinkError> {
-        match self.exchange(&Request::Shutdown { code })? {
-            Reply::ShuttingDown { .. } => {}
-            other => return Err(LinkError::Unexpected(Box::new(other))),
+        match self.exchange(&Request::Shutdown { code }) {
+            Ok(Reply::ShuttingDown { .. }) => {}
+            Ok(other) => return Err(LinkError::Unexpected(Box::new(other))),
+            Err(e) => {
+                // Say how QEMU ended, if it did: a closed line means it has exited.
+                std::thread::sleep(Duration::from_millis(200));
+                let status = self.child.try_wait().ok().flatten();
+                return Err(io(format!("{e}; QEMU's exit status: {status:?}")));
+            }
         }
         self.framed.take();
         for _ in 0..100 {

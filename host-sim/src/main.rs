@@ -25,7 +25,7 @@ enum Command {
     Simulate(simulate_cmd::SimulateArgs),
     /// Export the controller's tables (rust, bin, csv), verify a blob, plot surfaces.
     Tables(tables_cmd::TablesArgs),
-    /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
+    /// The least normal force that holds a load with the safety margin (docs/model.md's rule).
     RequiredForce(required_force_cmd::RequiredForceArgs),
     /// Every controller over its knob on random trials of scene families: drops and
     /// force over the oracle, tables, bench.json and Pareto plots.

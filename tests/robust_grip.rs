@@ -7,7 +7,8 @@
 use proptest::prelude::*;
 use softgrip::controller::lead::RATE_DEADBAND_N_PER_S;
 use softgrip::controller::slip::{
-    MARGIN_MAX, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION, QUIET_S, RELAX_TAU_S,
+    MARGIN_MAX, MARGIN_QUIET_S, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
+    QUIET_S, RELAX_TAU_S,
 };
 use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 
@@ -102,10 +103,13 @@ proptest! {
         let mut t = 0u64;
         // The episode: a slip at a moderate load, then a long quiet hold.
         let (f0, m0) = loads[0];
-        t += 1000;
-        let x = frame(t, f0 + 1.0, m0, 2.0, signal);
-        let out = slipped.tick(&x);
-        prop_assert!(out.margin > 1.0);
+        // An incipient report counts once it has lasted two ticks.
+        let mut out = None;
+        for _ in 0..2 {
+            t += 1000;
+            out = Some(slipped.tick(&frame(t, f0 + 1.0, m0, 2.0, signal)));
+        }
+        prop_assert!(out.unwrap().margin > 1.0);
         let ticks = ((QUIET_S + 12.0 * RELAX_TAU_S) * 1000.0) as usize;
         for _ in 0..ticks {
             t += 1000;
@@ -253,12 +257,19 @@ fn a_slip_raises_the_margin_lowers_mu_and_relaxes() {
         assert!(last.command_n <= cfg.n_max_n);
     }
     assert_eq!(last.margin, MARGIN_MAX);
-    // Quiet: holds for QUIET_S, then relaxes, then snaps back exactly.
-    let quiet_ticks = (QUIET_S * 1000.0) as usize;
-    for _ in 0..quiet_ticks - 5 {
+    // Quiet: the margin holds for MARGIN_QUIET_S, then relaxes with its short time
+    // constant; μ̂ holds for QUIET_S, then relaxes slowly; then both snap back exactly.
+    let mu_low = last.mu_estimate;
+    let margin_quiet = (MARGIN_QUIET_S * 1000.0) as usize;
+    for _ in 0..margin_quiet - 5 {
         last = tick(&mut c, 1.2, 3.0, SlipSignal::None);
     }
     assert_eq!(last.margin, MARGIN_MAX);
+    for _ in 0..(QUIET_S * 1000.0) as usize - margin_quiet {
+        last = tick(&mut c, 1.2, 3.0, SlipSignal::None);
+    }
+    assert!(last.margin < 1.0 + (MARGIN_MAX - 1.0) * 0.5, "{last:?}");
+    assert_eq!(last.mu_estimate, mu_low);
     let mut relaxed_at = None;
     for k in 0..(20.0 * RELAX_TAU_S * 1000.0) as usize {
         last = tick(&mut c, 1.2, 3.0, SlipSignal::None);
@@ -272,10 +283,17 @@ fn a_slip_raises_the_margin_lowers_mu_and_relaxes() {
         "relaxed back after {:.1} s of quiet",
         QUIET_S + k as f64 * 1e-3
     );
-    assert!(k as f64 * 1e-3 > RELAX_TAU_S, "relaxes slowly");
-    // Incipient steps are smaller than gross ones.
+    assert!(k as f64 * 1e-3 > RELAX_TAU_S, "μ̂ relaxes slowly");
+    // Incipient steps are smaller than gross ones, and need two ticks of report: one is
+    // taken as sensor noise.
     let mut d = Controller::<f64>::new(cfg).unwrap();
     let o = d.tick(&frame(1000, 1.0, 0.0, 2.0, SlipSignal::Incipient));
+    assert_eq!(o.margin, 1.0);
+    let o = d.tick(&frame(2000, 1.0, 0.0, 2.0, SlipSignal::None));
+    assert_eq!(o.margin, 1.0);
+    let o = d.tick(&frame(3000, 1.0, 0.0, 2.0, SlipSignal::Incipient));
+    assert_eq!(o.margin, 1.0);
+    let o = d.tick(&frame(4000, 1.0, 0.0, 2.0, SlipSignal::Incipient));
     assert_eq!(o.margin, 1.0 + MARGIN_STEP_INCIPIENT);
 }
 

@@ -5,11 +5,16 @@
 //! tactile skin can say when the contact starts to slip (*incipient*: the edge of the
 //! patch slides while its centre sticks) or slides as a whole (*gross*). On such a signal
 //! the controller
-//! 1. lowers its estimate `μ̂` to what is consistent with the load at which the contact
-//!    slipped: the load had utilisation `u` under the belief `μ̂`, and a contact slips at
+//! 1. on a gross slip, or an incipient one that persists past a first step of the margin
+//!    (a single incipient report is often a transient: a load that rose faster than the
+//!    grip), lowers its estimate `μ̂` to what is consistent with the load at which the
+//!    contact slipped: the load had utilisation `u` under the belief `μ̂`, and a contact slips at
 //!    utilisation 1, so `μ̂ ← μ̂·u` (never above the present estimate, never below
-//!    [`MU_FLOOR_FRACTION`] of the configured `μ`). For an incipient slip, which starts
-//!    below the true limit, this errs low, on the safe side. A signal at a load below
+//!    [`MU_FLOOR_FRACTION`] of the configured `μ`). A sensor reports a slip some
+//!    milliseconds after it began, while the command may already have risen, so `u` is the
+//!    highest utilisation of the last [`LOOKBACK_S`] to 2·[`LOOKBACK_S`] (the moment the
+//!    contact slipped is among them). For an incipient slip, which starts below the true
+//!    limit, this errs low, on the safe side. A signal at a load below
 //!    [`PLAUSIBLE_UTILISATION`] cannot be a slip of that load (a false alarm, or a load the
 //!    sensor did not see): it changes the margin only.
 //! 2. multiplies its safety factor by a margin raised at once by [`MARGIN_STEP_INCIPIENT`]
@@ -17,14 +22,22 @@
 //!    requirement in the same tick, past the rise-rate limit (the *emergency rise*, still
 //!    capped by `N_max`).
 //!
+//! An incipient report is acted on once it has lasted [`INCIPIENT_CONFIRM_S`] (two ticks
+//! at 1 kHz): a one-tick report is taken as sensor noise, the usual debounce of slip
+//! detectors. A gross report is acted on at once.
+//!
 //! A signal that persists steps the margin and the estimate again only after
 //! [`REFRACTORY_S`]: the actuator needs that long to act on the first step, and the
 //! load measured meanwhile sits on a force that is already rising.
 //!
-//! After [`QUIET_S`] with no slip signal, `μ̂` and the margin relax back toward the
-//! configured `μ` and 1 with the time constant [`RELAX_TAU_S`]; once within 1e-4 of them
-//! they snap back exactly, and the controller is again bit for bit the one that never saw
-//! a slip. With no slip signal ever, nothing here changes a single bit of the commands.
+//! The margin is a short guard for the moments after a slip, while the actuator and the
+//! estimate catch up: after [`MARGIN_QUIET_S`] with no slip signal it relaxes back toward
+//! 1 with the time constant [`MARGIN_RELAX_TAU_S`]. The estimate `μ̂` is evidence about the
+//! contact and is kept longer: after [`QUIET_S`] with no slip signal it relaxes back toward
+//! the configured `μ` with the time constant [`RELAX_TAU_S`]. Once both are within 1e-4 of
+//! their configured values they snap back exactly, and the controller is again bit for bit
+//! the one that never saw a slip. With no slip signal ever, nothing here changes a single
+//! bit of the commands.
 //!
 //! Cost per tick: a few comparisons; a division on a tick that changes `μ̂`.
 
@@ -56,9 +69,9 @@ impl SlipSignal {
 }
 
 /// Margin added on an incipient slip signal (to a margin that starts at 1).
-pub const MARGIN_STEP_INCIPIENT: f64 = 0.15;
+pub const MARGIN_STEP_INCIPIENT: f64 = 0.1;
 /// Margin added on a gross slip signal.
-pub const MARGIN_STEP_GROSS: f64 = 0.5;
+pub const MARGIN_STEP_GROSS: f64 = 0.3;
 /// The largest margin (the command is capped by `N_max` in any case).
 pub const MARGIN_MAX: f64 = 3.0;
 /// The lowest `μ̂`, as a fraction of the configured `μ`.
@@ -66,11 +79,21 @@ pub const MU_FLOOR_FRACTION: f64 = 0.5;
 /// A slip signal at a utilisation below this (under the present belief) is not taken as
 /// evidence about `μ`.
 pub const PLAUSIBLE_UTILISATION: f64 = 0.4;
+/// How long an incipient report must persist before it is acted on [s]: a shorter one is
+/// taken as sensor noise (a gross report is acted on at once).
+pub const INCIPIENT_CONFIRM_S: f64 = 0.002;
+/// How far back the utilisation at which a reported slip happened is looked for [s]
+/// (between one and two of these): covers a sensor latency of up to this much.
+pub const LOOKBACK_S: f64 = 0.01;
 /// Least time between two steps of the margin while a signal persists [s].
 pub const REFRACTORY_S: f64 = 0.02;
-/// Slip-free time before the estimate and the margin start to relax [s].
+/// Slip-free time before the margin starts to relax [s].
+pub const MARGIN_QUIET_S: f64 = 0.25;
+/// Time constant of the margin's relaxation [s].
+pub const MARGIN_RELAX_TAU_S: f64 = 0.5;
+/// Slip-free time before the estimate `μ̂` starts to relax [s].
 pub const QUIET_S: f64 = 1.0;
-/// Time constant of the relaxation [s].
+/// Time constant of the estimate's relaxation [s].
 pub const RELAX_TAU_S: f64 = 5.0;
 
 /// The controller's belief about friction and its margin, and how slip changes them.
@@ -80,14 +103,23 @@ pub(crate) struct SlipResponse<T> {
     inv_mu: T,
     mu_floor: T,
     refractory_ticks: u32,
+    confirm_ticks: u32,
+    lookback_ticks: u32,
     quiet_ticks: u32,
     relax_rate: T,
+    margin_quiet_ticks: u32,
+    margin_relax_rate: T,
     // State.
     mu_hat: T,
     inv_mu_hat: T,
     margin: T,
     since_slip: u32,
     since_step: u32,
+    incipient_run: u32,
+    episode_steps: u8,
+    peak_now: T,
+    peak_before: T,
+    peak_age: u32,
     pristine: bool,
 }
 
@@ -108,13 +140,22 @@ impl<T: Real> SlipResponse<T> {
             inv_mu: T::of(1.0 / mu),
             mu_floor: T::of(mu * MU_FLOOR_FRACTION),
             refractory_ticks: ticks_of(REFRACTORY_S, tick_period_s),
+            confirm_ticks: ticks_of(INCIPIENT_CONFIRM_S, tick_period_s),
+            lookback_ticks: ticks_of(LOOKBACK_S, tick_period_s),
             quiet_ticks: ticks_of(QUIET_S, tick_period_s),
             relax_rate: T::of((tick_period_s / RELAX_TAU_S).min(1.0)),
+            margin_quiet_ticks: ticks_of(MARGIN_QUIET_S, tick_period_s),
+            margin_relax_rate: T::of((tick_period_s / MARGIN_RELAX_TAU_S).min(1.0)),
             mu_hat: T::of(mu),
             inv_mu_hat: T::of(1.0 / mu),
             margin: T::one(),
             since_slip: u32::MAX,
             since_step: u32::MAX,
+            incipient_run: 0,
+            episode_steps: 0,
+            peak_now: T::zero(),
+            peak_before: T::zero(),
+            peak_age: 0,
             pristine: true,
         }
     }
@@ -126,6 +167,11 @@ impl<T: Real> SlipResponse<T> {
         self.margin = T::one();
         self.since_slip = u32::MAX;
         self.since_step = u32::MAX;
+        self.incipient_run = 0;
+        self.episode_steps = 0;
+        self.peak_now = T::zero();
+        self.peak_before = T::zero();
+        self.peak_age = 0;
         self.pristine = true;
     }
 
@@ -162,10 +208,28 @@ impl<T: Real> SlipResponse<T> {
     /// rose or `μ̂` fell (the tick then allows the emergency rise).
     pub(crate) fn observe(&mut self, signal: SlipSignal, utilisation: T) -> bool {
         self.since_step = self.since_step.saturating_add(1);
+        // The recent peak of the utilisation, in two windows of `lookback_ticks`.
+        self.peak_age = self.peak_age.saturating_add(1);
+        if self.peak_age > self.lookback_ticks {
+            self.peak_before = self.peak_now;
+            self.peak_now = T::zero();
+            self.peak_age = 1;
+        }
+        if utilisation > self.peak_now {
+            self.peak_now = utilisation;
+        }
+        self.incipient_run = match signal {
+            SlipSignal::Incipient => self.incipient_run.saturating_add(1),
+            _ => 0,
+        };
         let step = match signal {
+            SlipSignal::Incipient if self.incipient_run < self.confirm_ticks => {
+                // Not yet confirmed: neither evidence nor quiet.
+                return false;
+            }
             SlipSignal::None => {
                 self.since_slip = self.since_slip.saturating_add(1);
-                if !self.pristine && self.since_slip >= self.quiet_ticks {
+                if !self.pristine && self.since_slip >= self.margin_quiet_ticks {
                     self.relax();
                 }
                 return false;
@@ -173,6 +237,10 @@ impl<T: Real> SlipResponse<T> {
             SlipSignal::Incipient => T::of(MARGIN_STEP_INCIPIENT),
             SlipSignal::Gross => T::of(MARGIN_STEP_GROSS),
         };
+        // A new episode once the margin has had its quiet time.
+        if self.since_slip >= self.margin_quiet_ticks {
+            self.episode_steps = 0;
+        }
         self.since_slip = 0;
         if self.since_step < self.refractory_ticks {
             return false;
@@ -182,23 +250,34 @@ impl<T: Real> SlipResponse<T> {
         let margin = (self.margin + step).min(T::of(MARGIN_MAX));
         let mut changed = margin > self.margin;
         self.margin = margin;
-        let u = utilisation;
-        if u >= T::of(PLAUSIBLE_UTILISATION) && u < T::one() {
+        // Evidence about μ: a gross slip, or an incipient one that outlasted a first step
+        // of the margin. (A first incipient report is often a transient, such as a load
+        // that rose faster than the grip; the margin covers it.)
+        let evidence = signal == SlipSignal::Gross || self.episode_steps > 0;
+        self.episode_steps = self.episode_steps.saturating_add(1);
+        let u = self.peak_now.max(self.peak_before);
+        if evidence && u >= T::of(PLAUSIBLE_UTILISATION) && u < T::one() {
             let mu = (self.mu_hat * u).max(self.mu_floor);
             if mu < self.mu_hat {
                 self.mu_hat = mu;
                 self.inv_mu_hat = mu.recip();
                 changed = true;
+                // Utilisations under the old belief are not comparable with new ones.
+                self.peak_now = T::zero();
+                self.peak_before = T::zero();
             }
         }
         changed
     }
 
     fn relax(&mut self) {
-        let k = self.relax_rate;
+        let k = self.margin_relax_rate;
         self.margin = self.margin + (T::one() - self.margin) * k;
-        self.mu_hat = self.mu_hat + (self.mu - self.mu_hat) * k;
-        self.inv_mu_hat = self.mu_hat.recip();
+        if self.since_slip >= self.quiet_ticks && self.mu_hat != self.mu {
+            let k = self.relax_rate;
+            self.mu_hat = self.mu_hat + (self.mu - self.mu_hat) * k;
+            self.inv_mu_hat = self.mu_hat.recip();
+        }
         let close = T::of(1e-4);
         if self.margin - T::one() <= close && (self.mu - self.mu_hat) <= close * self.mu {
             self.reset();

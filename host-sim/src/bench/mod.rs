@@ -178,6 +178,7 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let mut all: Vec<Row> = Vec::new();
+    let mut dominance = Vec::new();
     for family in &families {
         bar.set_message(family.to_string());
         let trace = if args.trace {
@@ -210,7 +211,12 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
         )
         .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
         let rows = sweep::rows(family, &sweeps, &results);
-        bar.suspend(|| println!("{}", report::family_table(family, &rows)));
+        let check = report::dominance(family, &rows);
+        bar.suspend(|| {
+            println!("{}", report::family_table(family, &rows));
+            println!("{}\n", report::dominance_line(&check));
+        });
+        dominance.push(check);
         plot::write_pareto(&args.out, family, &rows).map_err(CliError::Failed)?;
         all.extend(rows);
     }
@@ -227,6 +233,7 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
         args.trials,
         &args.link,
         &all,
+        &dominance,
     )
     .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
     println!("wrote {}", args.out.display());

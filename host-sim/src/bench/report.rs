@@ -49,19 +49,21 @@ pub fn family_table(family: &str, rows: &[Row]) -> String {
     s
 }
 
-/// Writes `bench.json`: `{"seed", "trials", "link", "rows": [...]}`.
+/// Writes `bench.json`: `{"seed", "trials", "link", "rows": [...], "dominance": [...]}`.
 pub fn write_json(
     path: &Path,
     seed: u64,
     trials: usize,
     link: &str,
     rows: &[Row],
+    dominance: &[Dominance],
 ) -> std::io::Result<()> {
     let v = serde_json::json!({
         "seed": seed,
         "trials": trials,
         "link": link,
         "rows": rows,
+        "dominance": dominance,
     });
     let text = serde_json::to_string_pretty(&v).map_err(std::io::Error::other)?;
     std::fs::write(path, text + "\n")
@@ -110,4 +112,65 @@ pub fn write_trials_csv(
         }
     }
     std::fs::write(path, s)
+}
+
+/// The claim the benchmark tests, for one family: for each baseline setting that drops at
+/// most [`DOMINANCE_MAX_DROP_RATE`] of the trials, a softgrip setting (either mode, any
+/// safety factor) with a drop rate no higher and a force over the oracle strictly lower.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Dominance {
+    /// The family.
+    pub family: String,
+    /// Baseline settings considered (those at or under the drop-rate limit).
+    pub baselines: usize,
+    /// Those that no softgrip setting beats, as `controller@knob_value`.
+    pub undominated: Vec<String>,
+}
+
+/// Baseline settings that drop more than this are not compared.
+pub const DOMINANCE_MAX_DROP_RATE: f64 = 0.10;
+
+/// The dominance check of [`Dominance`] over one family's rows.
+pub fn dominance(family: &str, rows: &[Row]) -> Dominance {
+    let softgrip = |r: &&Row| r.controller.starts_with("softgrip");
+    let ours: Vec<&Row> = rows.iter().filter(softgrip).collect();
+    let theirs: Vec<&Row> = rows
+        .iter()
+        .filter(|r| !softgrip(r) && r.drop_rate <= DOMINANCE_MAX_DROP_RATE)
+        .collect();
+    let undominated = theirs
+        .iter()
+        .filter(|b| {
+            !ours
+                .iter()
+                .any(|s| s.drop_rate <= b.drop_rate && s.force_over_oracle < b.force_over_oracle)
+        })
+        .map(|b| format!("{}@{}", b.controller, b.knob_value))
+        .collect();
+    Dominance {
+        family: family.to_string(),
+        baselines: theirs.len(),
+        undominated,
+    }
+}
+
+/// One line for people.
+pub fn dominance_line(d: &Dominance) -> String {
+    if d.undominated.is_empty() {
+        format!(
+            "{}: softgrip dominates all {} baseline settings that drop at most {:.0} %",
+            d.family,
+            d.baselines,
+            100.0 * DOMINANCE_MAX_DROP_RATE
+        )
+    } else {
+        format!(
+            "{}: NOT dominated by any softgrip setting: {} (of {} baseline settings that drop \
+             at most {:.0} %)",
+            d.family,
+            d.undominated.join(", "),
+            d.baselines,
+            100.0 * DOMINANCE_MAX_DROP_RATE
+        )
+    }
 }

@@ -50,6 +50,16 @@ fn same(p: &str) -> &str {
     p
 }
 
+/// The `Controller` keyword of a parameter the core names otherwise: `QuadratureOrder`
+/// names itself `order`, the configuration field is `quadrature_order`.
+fn field_name(p: &str) -> &str {
+    match p {
+        "order" => "quadrature_order",
+        "delta_over_a" => "skew",
+        other => other,
+    }
+}
+
 fn finite(py: Python<'_>, name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() {
         Ok(v)
@@ -229,6 +239,7 @@ fn rf_name(param: &str) -> &str {
         "force_range_n" => "ft",
         "moment_range_nm" => "mn",
         "delta_over_a" => "skew",
+        "order" => "quadrature_order",
         other => other,
     }
 }
@@ -522,7 +533,8 @@ fn config_dict<'py>(py: Python<'py>, c: &ControllerConfig) -> PyResult<Bound<'py
 }
 
 fn build(py: Python<'_>, cfg: ControllerConfig) -> PyResult<CoreController<f64, Libm>> {
-    CoreController::<f64, Libm>::new_precomputed_in::<f64>(cfg).map_err(|e| core_err(py, e, same))
+    CoreController::<f64, Libm>::new_precomputed_in::<f64>(cfg)
+        .map_err(|e| core_err(py, e, field_name))
 }
 
 /// What one tick decided, besides the command (Rust's `TickOutput`).

@@ -445,7 +445,10 @@ def main(argv: Optional[list[str]] = None) -> int:
 
 
 def plot(results: list[Result], cone: list[dict], path: str) -> None:
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:
+        sys.exit("--plot needs matplotlib: pip install matplotlib")
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -9,8 +9,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# A failing cargo test does not stop the Python tests; the script fails if either does.
+cargo_rc=0
 if [ "${SOFTGRIP_SKIP_CARGO:-0}" != 1 ]; then
-    cargo test --workspace --release
+    cargo test --workspace --release || cargo_rc=$?
 fi
 
 # The Python tests compare with the CLI's JSON: build it (incremental, release).
@@ -31,6 +33,10 @@ set -e
 echo "python tests: $(( $(date +%s) - py_start )) s"
 if [ "$rc" -eq 5 ]; then
     echo "error: pytest collected no tests" >&2
-    exit 1
+    rc=1
+fi
+if [ "$cargo_rc" -ne 0 ]; then
+    echo "error: cargo test --workspace --release failed (exit $cargo_rc)" >&2
+    exit "$cargo_rc"
 fi
 exit "$rc"

@@ -597,6 +597,10 @@ impl From<TickOutput<f64>> for TickStatus {
 }
 
 /// The slip-prevention controller (f64 precompute and tick, libm).
+///
+/// `Controller(**config)`: keywords are `ControllerConfig`'s fields (see
+/// `softgrip.default_config()`): forces in N, moments in N·m, lengths in m, times in s,
+/// rates in N/s. A bad value raises `ConfigError` (a `ValueError`) naming the field.
 #[pyclass(module = "softgrip")]
 struct Controller {
     inner: CoreController<f64, Libm>,
@@ -635,7 +639,11 @@ impl Controller {
         })
     }
 
-    /// One tick. Returns `(command_n, TickStatus)`.
+    /// One control tick. `ft`: the tangential force [N], `|f_t|` or its two components;
+    /// `mn`: the torsional moment [N·m]; `t`: the sensor's timestamp [s] (it must
+    /// increase; rounded to µs); `slip`: None, "none", "incipient" or "gross";
+    /// `normal_force`: the measured normal force [N] (default: the present command).
+    /// Returns `(command [N], TickStatus)`.
     #[pyo3(signature = (ft, mn, t, slip=None, normal_force=None))]
     fn tick(
         &mut self,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sets up the Cortex-M4F toolchain and QEMU on a fresh machine (see ../shared/FIRMWARE.md).
+# Sets up the Cortex-M4F toolchain and QEMU on a fresh machine (see docs/firmware.md).
 # Safe to run again: each step checks whether it is already done.
 #
 # - Debian's rustc-web, cargo-web and rust-web-src (Rust with the library source, which

@@ -1,5 +1,5 @@
 //! Contact pressure: the k-family of the paper (Eq. 1–3) on the rectangle and on the disc,
-//! and its skewed, ray-scaled form (Eq. 6–9) as `MODEL.md` reads it.
+//! and its skewed, ray-scaled form (Eq. 6–9) as `docs/model.md` reads it.
 //!
 //! All profiles share the shape function `g(s) = (1 − s^k)^(1/k)` of the normalised
 //! distance `s ∈ [0, 1]` from the pressure peak to the patch edge along a ray. `k = 2` is

@@ -1,6 +1,6 @@
 //! Conservative by construction: in every mode, for every load, the controller asks at
 //! least the force that the exact limit surface needs with the same safety factor
-//! (MODEL.md's table reading), to 1e-6 relative.
+//! (docs/model.md's table reading), to 1e-6 relative.
 //!
 //! The reference: the least `N` at which `s·(f_t, m_n)` lies inside the exact surface at
 //! `l/a(N)`, by bisection in `ln N` with a fresh 192-sample sweep at every trial `N`.

@@ -1,4 +1,4 @@
-//! The controller: the rule of MODEL.md against closed forms and an exact f64 reference,
+//! The controller: the rule of docs/model.md against closed forms and an exact f64 reference,
 //! its properties, and its behaviour on hostile input.
 
 use proptest::prelude::*;
@@ -26,8 +26,8 @@ fn rect(mode: Mode, skew: bool) -> ControllerConfig {
     }
 }
 
-/// MODEL.md: disc, γ = 0, ellipse mode: `N_req(s) = s·sqrt((f/μ)² + (m/(μ a pitch))²)`.
-/// MODEL.md's closed form for the disc at `γ = 0`, ellipse mode, with the controller's
+/// docs/model.md: disc, γ = 0, ellipse mode: `N_req(s) = s·sqrt((f/μ)² + (m/(μ a pitch))²)`.
+/// docs/model.md's closed form for the disc at `γ = 0`, ellipse mode, with the controller's
 /// inscribed ellipse `(A, B)` in place of Eq. 10's unit circle.
 fn disc_closed_form(cfg: &ControllerConfig, axes: (f64, f64), f: f64, m: f64, s: f64) -> f64 {
     let pitch = 3.0 * std::f64::consts::PI / 16.0; // k = 2

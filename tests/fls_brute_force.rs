@@ -1,5 +1,5 @@
 //! The fast path ([`FlsModel::point`]) against an independent brute-force 2-D integration of
-//! `MODEL.md`'s definitions (`tests/common/brute_force.rs`), and the equilibrium
+//! `docs/model.md`'s definitions (`tests/common/brute_force.rs`), and the equilibrium
 //! `∫∫ p dΩ = N` of the skewed pressures.
 //!
 //! # Tolerances, from the brute force's measured convergence
@@ -145,7 +145,7 @@ fn disc_k3_skewed() {
     });
 }
 
-/// The brute force on its own against `MODEL.md`'s closed-form pitches (`m̃` at `d = 0`),
+/// The brute force on its own against `docs/model.md`'s closed-form pitches (`m̃` at `d = 0`),
 /// so that it is anchored independently of the crate's fast path.
 #[test]
 fn brute_force_matches_closed_form_pitches() {
@@ -206,7 +206,7 @@ fn skew_is_resolved() {
     }
 }
 
-/// `∫∫ p dΩ = N` exactly for every peak position (`MODEL.md`, "Skewed"), for the skewed
+/// `∫∫ p dΩ = N` exactly for every peak position (`docs/model.md`, "Skewed"), for the skewed
 /// pressures on the rectangle and the disc, including peaks at 0.99 of the way to the edge.
 #[test]
 fn skewed_pressures_integrate_to_n() {

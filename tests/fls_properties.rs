@@ -134,7 +134,7 @@ fn the_gap_to_the_ellipse_is_a_few_percent_and_found_exactly() {
     let m = model(Shape::Rect { aspect: 1.0 }, 2.0, None);
     let table = FlsTable::<f64, 80>::sweep(&m, 64).unwrap();
     let gap = RadialGap::find(&m, &table);
-    // MODEL.md: "inside this ellipse by a few per cent near the diagonal".
+    // docs/model.md: "inside this ellipse by a few per cent near the diagonal".
     assert!(
         gap.max_relative_gap > 0.01 && gap.max_relative_gap < 0.15,
         "{gap:?}"
@@ -178,7 +178,7 @@ fn skew_keeps_the_pitch_and_its_sign_does_not_matter() {
 
 #[test]
 fn skew_moves_the_surface_and_we_report_which_way() {
-    // MODEL.md asks to report honestly what the skew does. Under its reading the skewed
+    // docs/model.md asks to report honestly what the skew does. Under its reading the skewed
     // surface of the paper's case (k = 2, Δ/a = 0.9, α = 1.1) lies *outside* the symmetric
     // one in m̃ at mid sweep; this pins the direction so a change is noticed.
     let plain = model(Shape::Rect { aspect: 1.0 }, 2.0, None);

@@ -1,4 +1,4 @@
-//! The reference values of MODEL.md: the paper's Eq. 22 pitches to every printed digit, and
+//! The reference values of docs/model.md: the paper's Eq. 22 pitches to every printed digit, and
 //! the closed forms to 1e-9 (in practice to about 1e-14).
 
 use softgrip::fls::closed_form_pitch;

@@ -25,7 +25,7 @@ enum Command {
     Simulate(simulate_cmd::SimulateArgs),
     /// Export the controller's tables (rust, bin, csv), verify a blob, plot surfaces.
     Tables(tables_cmd::TablesArgs),
-    /// The least normal force that holds a load with the safety margin (MODEL.md's rule).
+    /// The least normal force that holds a load with the safety margin (docs/model.md's rule).
     RequiredForce(required_force_cmd::RequiredForceArgs),
     /// Regenerate the accuracy/time report (accuracy.md, accuracy.svg).
     Accuracy(accuracy::AccuracyArgs),

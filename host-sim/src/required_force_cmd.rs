@@ -1,4 +1,4 @@
-//! `host-sim required-force`: MODEL.md's slip-prevention rule for one load, computed by
+//! `host-sim required-force`: docs/model.md's slip-prevention rule for one load, computed by
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
@@ -135,7 +135,7 @@ pub struct RequiredForce {
     /// ellipse mode's inscribed ellipse (`(1, 1)` would be Eq. 10's); `(1, 1)` in table mode,
     /// which applies none.
     pub ellipse_axes: [f64; 2],
-    /// `N_req(s)` on the exact limit surface (MODEL.md's table reading), with no grid: a
+    /// `N_req(s)` on the exact limit surface (docs/model.md's table reading), with no grid: a
     /// root search in `ln N` in f64 with the surface integrated at every trial force [N].
     pub exact_force: f64,
     /// `normal_force / exact_force − 1`: what this mode asks over the exact surface

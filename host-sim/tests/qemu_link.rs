@@ -28,6 +28,8 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
         return;
     };
     let mut link = QemuLink::boot(&qemu, &elf).unwrap();
+    let mut previous: Option<Controller<f32, Libm>> = None;
+    let mut clock_us = 0u64;
     for mode in [Mode::Ellipse, Mode::Table] {
         let cfg = ControllerConfig {
             mode,
@@ -38,12 +40,16 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
             Reply::Configured(Ok(()))
         );
         let mut direct = Controller::<f32, Libm>::new(cfg).unwrap();
+        // The device hands a running grasp over to a new configuration: so does the host.
+        if let Some(p) = &previous {
+            direct.take_over_from(p);
+        }
         let mut costs = Vec::new();
         for i in 0..300u32 {
             let p = i as f32 * 0.05;
             let f = SensorFrame {
                 seq: i,
-                timestamp_us: 1000 * u64::from(i) + 1,
+                timestamp_us: clock_us + 1000 * u64::from(i) + 1,
                 tangential_force_n: [3.0 * p.sin().abs(), 0.5 * p.cos()],
                 torsional_moment_nm: 0.01 * (0.7 * p).sin(),
                 normal_force_n: if i % 97 == 5 { f32::NAN } else { 3.0 + p.cos() },
@@ -73,6 +79,8 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
             assert_eq!(cmd.status, want.status);
             costs.push(cmd.tick_cost);
         }
+        clock_us += 300_000;
+        previous = Some(direct);
         let Reply::Stats(s) = link.exchange(&Request::GetStats).unwrap() else {
             panic!()
         };

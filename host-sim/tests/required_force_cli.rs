@@ -38,7 +38,7 @@ fn json_has_the_issue_keys_and_the_disc_closed_form_at_gamma_zero() {
         for key in ["normal_force", "n_slip", "a", "utilisation", "status"] {
             assert!(!v[key].is_null(), "{key}");
         }
-        // MODEL.md's closed form with the inscribed ellipse (A, B) for Eq. 10's unit circle:
+        // docs/model.md's closed form with the inscribed ellipse (A, B) for Eq. 10's unit circle:
         // N_req(s) = s·sqrt((f/(μA))² + (m/(μ a pitch B))²), pitch = 3π/16.
         let pitch = 3.0 * std::f64::consts::PI / 16.0;
         let ax = v["ellipse_axes"][0].as_f64().unwrap();

@@ -109,7 +109,7 @@ fn samples(v: &serde_json::Value) -> Vec<(f64, f64, f64)> {
 /// centres of rotation: all finite, with the closed forms where they exist.
 #[test]
 fn fls_at_the_corners_of_the_domain_gives_finite_answers() {
-    // The disc's closed-form pitch at k = 1 and uniform (MODEL.md: 2/3), and the edge and
+    // The disc's closed-form pitch at k = 1 and uniform (docs/model.md: 2/3), and the edge and
     // far-field points of the extreme aspects.
     // k = 1: B(3, 2)/B(2, 2) = (1/12)/(1/6) = 1/2.
     let v = fls(&["--shape", "disc", "--k", "1", "--at", "0,1,1e12"]).unwrap();
@@ -287,9 +287,12 @@ fn num(v: &serde_json::Value, key: &str) -> f64 {
 /// micromath, the largest skew, a grid from 1e-9 to 1e6 N, zero loads, and loads no force
 /// up to `N_max` holds. Checked: finite; the command inside `[N_min, N_max]`; `saturated`
 /// exactly when `N_req > N_max`; `N_slip ≤ N_req ≤ s·N_slip`; a pure translation needs
-/// `s·f_t/μ` in ellipse mode whatever the contact (the solver's 8 ulp: 1e-12 in f64, 1e-6
-/// in f32; with libm); inside the grid the utilisation at the command is `1/s` (1e-5;
-/// micromath's sqrt errs by up to 6 %, so 7 % there).
+/// `s·f_t/(μ·A)` in ellipse mode whatever the contact, with `A` the force semi-axis of the
+/// ellipse inscribed in the exact surface (`ellipse_axes`, at most 1; the solver's 8 ulp:
+/// 1e-12 in f64, 1e-6 in f32; with libm), and table mode applies no ellipse
+/// (`ellipse_axes = [1, 1]`); with libm, both modes ask at least `exact_force`, the exact
+/// surface's `N_req(s)` (`over_exact ≥ −1e-6`); inside the grid the utilisation at the
+/// command is `1/s` (1e-5; micromath's sqrt errs by up to 6 %, so 7 % there).
 #[test]
 fn required_force_at_the_corners_of_the_domain() {
     let mut count = 0;
@@ -362,8 +365,27 @@ fn required_force_at_the_corners_of_the_domain() {
                             );
                             let ft: f64 = ft.parse().unwrap();
                             let mn: f64 = mn.parse().unwrap();
+                            let axes =
+                                [v["ellipse_axes"][0].as_f64(), v["ellipse_axes"][1].as_f64()];
+                            let [Some(ax_f), Some(ax_m)] = axes else {
+                                panic!("{case}: ellipse_axes: {v}");
+                            };
+                            if mode == "table" {
+                                assert_eq!((ax_f, ax_m), (1.0, 1.0), "{case}: {v}");
+                            } else {
+                                // Inscribed in the exact surface, which crosses the axes at 1.
+                                for ax in [ax_f, ax_m] {
+                                    assert!(ax > 0.0 && ax <= 1.0 + 1e-6, "{case}: {v}");
+                                }
+                            }
+                            // Conservative by construction: never below the exact
+                            // surface's `N_req(s)` (f32 loads round by 6e-8).
+                            if math == "libm" && (ft > 0.0 || mn > 0.0) {
+                                let over = num(&v, "over_exact");
+                                assert!(over >= -1e-6, "{case}: {v}");
+                            }
                             if mn == 0.0 && mode == "ellipse" && math == "libm" {
-                                let want = 1.3 * ft / 0.8;
+                                let want = 1.3 * ft / (0.8 * ax_f);
                                 // f32 loses accuracy below ~1e-8 N on the disc, where
                                 // φ = R²(N² − F²) − M² reaches f32's subnormals: up to
                                 // 5.6e-3 at 1.6e-9 N, always high (tests/stress.rs).

@@ -1,6 +1,6 @@
 //! What the contact can hold at each normal force: the start-up grid the tick searches.
 //!
-//! MODEL.md's rule asks, for a load `(f_t, m_n)` and safety factor `s`, for the least `N`
+//! docs/model.md's rule asks, for a load `(f_t, m_n)` and safety factor `s`, for the least `N`
 //! with the scaled load inside the limit surface of the contact at `N`. Write `F = s f_t/μ`
 //! and `M = s m_n/μ`, and `R(N) = a(N) · pitch(l/a(N))`, the contact's *moment arm* [m].
 //! In coordinates `(x, y) = (f̃, m̃/pitch) = (F/N, M/(N R))` the Eq. 10 ellipse is the
@@ -677,7 +677,7 @@ impl<T: Real> Capacity<T> {
 
     /// `N_req` for `s` times a load whose `N_slip` solution is `slip`, `s ≥ 1`. No node
     /// below `N_slip` can hold the larger load, so the node search starts at `slip`'s node
-    /// and walks up (MODEL.md: `N_req(s) ≤ s·N_slip`, a few nodes at most). Same answer
+    /// and walks up (docs/model.md: `N_req(s) ≤ s·N_slip`, a few nodes at most). Same answer
     /// as [`Capacity::required_force`] on the scaled load, at about half the cost.
     pub fn required_force_scaled<M: TickMath<T>>(
         &self,

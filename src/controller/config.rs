@@ -24,7 +24,7 @@ impl FingerShape {
     }
 }
 
-/// How the tick tests the load against the limit surface (MODEL.md, "The slip-prevention
+/// How the tick tests the load against the limit surface (docs/model.md, "The slip-prevention
 /// rule").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Mode {

@@ -1,4 +1,4 @@
-//! The per-tick slip-prevention controller (MODEL.md, "The slip-prevention rule").
+//! The per-tick slip-prevention controller (docs/model.md, "The slip-prevention rule").
 
 pub mod blob;
 mod capacity;

@@ -250,7 +250,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     }
 
     /// `N_req` for a load, without touching the controller's state: the pure rule of
-    /// MODEL.md. `safety` scales the load (1 gives `N_slip`). Non-finite inputs give
+    /// docs/model.md. `safety` scales the load (1 gives `N_slip`). Non-finite inputs give
     /// `None`.
     pub fn required_force(
         &self,

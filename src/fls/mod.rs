@@ -1,5 +1,5 @@
 //! The friction limit surface (FLS): normalised force and moment `(f̃, m̃)` that a sliding
-//! patch transmits for each position `d = d_c/a` of its centre of rotation (MODEL.md,
+//! patch transmits for each position `d = d_c/a` of its centre of rotation (docs/model.md,
 //! "Sliding, friction and the limit surface"; the paper's Eq. 11–21).
 //!
 //! - [`FlsModel`] evaluates one point of the surface, by tanh-sinh quadrature split at every
@@ -233,7 +233,7 @@ impl<T: Real> FlsModel<T> {
     }
 }
 
-/// The closed-form pitch where one exists (MODEL.md's reference values): the disc for any
+/// The closed-form pitch where one exists (docs/model.md's reference values): the disc for any
 /// `k`, and the uniform rectangle. `None` otherwise.
 pub fn closed_form_pitch(shape: Shape, k: f64) -> Option<f64> {
     match shape {

@@ -1,5 +1,5 @@
 //! An independent brute-force 2-D integrator for one point of the friction limit surface,
-//! written straight from `MODEL.md` ("Sliding, friction and the limit surface") to check the
+//! written straight from `docs/model.md` ("Sliding, friction and the limit surface") to check the
 //! fast path ([`softgrip::FlsModel::point`]).
 //!
 //! It shares nothing with the crate's quadrature or its closed-form row and ring kernels:

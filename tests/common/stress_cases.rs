@@ -1,5 +1,5 @@
 //! References for the stress suite (`tests/stress.rs`, `tests/properties_domain.rs`):
-//! closed forms written here from MODEL.md, independently of the crate's own closed forms,
+//! closed forms written here from docs/model.md, independently of the crate's own closed forms,
 //! and the slip-prevention rule evaluated without any grid.
 //!
 //! Included with `#[path = "common/stress_cases.rs"] mod stress_cases;` (the shared
@@ -24,7 +24,7 @@ pub fn profile_moment(k: f64, j: f64) -> f64 {
     beta((j + 1.0) / k, 1.0 + 1.0 / k) / k
 }
 
-/// The disc's pitch for any `k` (MODEL.md's table): `B(3/k, 1+1/k) / B(2/k, 1+1/k)`, i.e.
+/// The disc's pitch for any `k` (docs/model.md's table): `B(3/k, 1+1/k) / B(2/k, 1+1/k)`, i.e.
 /// `E[r]` under the disc's pressure.
 pub fn disc_pitch(k: f64) -> f64 {
     profile_moment(k, 2.0) / profile_moment(k, 1.0)
@@ -87,7 +87,7 @@ pub fn model_at(cfg: &ControllerConfig, a: f64, order: usize) -> FlsModel<f64> {
     )
 }
 
-/// MODEL.md's rule evaluated without any grid: the least `N` (geometric bisection over
+/// docs/model.md's rule evaluated without any grid: the least `N` (geometric bisection over
 /// `[1e-14, 1e10]` N to 1e-13 relative) at which `s` times the load lies inside the limit
 /// surface of the contact at `N`, with the exact pitch (and in table mode a 1024-sample sweep)
 /// at `l/a(N)` recomputed for every trial `N`.

@@ -1,5 +1,5 @@
 //! The exact answers the report measures against, and the "exact integration per tick"
-//! rule: MODEL.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
+//! rule: docs/model.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
 //! surface integrated by [`FlsModel`] at every trial normal force.
 //!
 //! - [`Finger`]: the contact of a [`ControllerConfig`] (`a = c·N^γ`, `l/a(N)`).
@@ -259,8 +259,8 @@ pub struct ExactTick {
 }
 
 /// One tick of the exact rule: the same three answers the controller's tick gives, with the
-/// limit surface integrated at every trial force (MODEL.md's rule with no grid). `N_slip`
-/// is searched on `[N_min/100, 100·N_max]`, `N_req(s)` on `[N_slip, s·N_slip]` (MODEL.md:
+/// limit surface integrated at every trial force (docs/model.md's rule with no grid). `N_slip`
+/// is searched on `[N_min/100, 100·N_max]`, `N_req(s)` on `[N_slip, s·N_slip]` (docs/model.md:
 /// `N_req(s) ≤ s·N_slip`).
 pub fn exact_tick(surface: &ExactSurface, fx: f64, fy: f64, mn: f64, n_meas: f64) -> ExactTick {
     let cfg = &surface.finger().cfg;

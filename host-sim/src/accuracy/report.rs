@@ -388,7 +388,7 @@ fn section_notes(out: &mut String, results: &Results, knob: Knob) {
         }
         Knob::Rule => {
             out.push_str(
-                "\"Exact integration\" runs MODEL.md's rule with no grid: at every trial \
+                "\"Exact integration\" runs docs/model.md's rule with no grid: at every trial \
                  force it builds the model at `l/a(N)` and finds the exact surface's radius \
                  in the load's direction (bracketed Illinois searches over the sweep \
                  parameter and over `ln N`, tolerances 1e-9 and 1e-8, f64, order 28); one \

@@ -1,6 +1,6 @@
 //! The firmware in QEMU: boots the Cortex-M4F build on the `netduinoplus2` machine with
 //! its USART on a host pseudo-terminal (`-serial pty`) and instructions counted exactly
-//! (`-icount shift=0`), and talks to it over that pty (FIRMWARE.md).
+//! (`-icount shift=0`), and talks to it over that pty (docs/firmware.md).
 
 use super::{Framed, Link, LinkError};
 use serialport::TTYPort;
@@ -139,9 +139,15 @@ impl QemuLink {
 
     /// Asks the firmware to stop with `code` and returns QEMU's exit code.
     pub fn shutdown(mut self, code: u8) -> Result<i32, LinkError> {
-        match self.exchange(&Request::Shutdown { code })? {
-            Reply::ShuttingDown { .. } => {}
-            other => return Err(LinkError::Unexpected(Box::new(other))),
+        match self.exchange(&Request::Shutdown { code }) {
+            Ok(Reply::ShuttingDown { .. }) => {}
+            Ok(other) => return Err(LinkError::Unexpected(Box::new(other))),
+            Err(e) => {
+                // Say how QEMU ended, if it did: a closed line means it has exited.
+                std::thread::sleep(Duration::from_millis(200));
+                let status = self.child.try_wait().ok().flatten();
+                return Err(io(format!("{e}; QEMU's exit status: {status:?}")));
+            }
         }
         self.framed.take();
         for _ in 0..100 {

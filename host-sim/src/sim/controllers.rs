@@ -3,7 +3,7 @@
 //!
 //! | name | rule |
 //! | --- | --- |
-//! | `softgrip`, `softgrip-ellipse`, `softgrip-table` | MODEL.md's rule on the device, over the link |
+//! | `softgrip`, `softgrip-ellipse`, `softgrip-table` | docs/model.md's rule on the device, over the link |
 //! | `constant` | a fixed grip force |
 //! | `coulomb` | `N = s·f_t/μ`: translation only, torsion ignored |
 //! | `box` | `N = s·max(f_t/μ, m_n/m̂)`, `m̂ = μ·a_ref·pitch` (a box-shaped limit, as some tactile-gripper code uses) |

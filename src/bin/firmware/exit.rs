@@ -1,6 +1,6 @@
 //! Leaving the emulator with an exit code: semihosting's `SYS_EXIT_EXTENDED` (0x20) with
 //! the block `[ADP_Stopped_ApplicationExit, code]`, which QEMU passes through as its own
-//! exit code (FIRMWARE.md). On hardware without a debugger this would trap; the loop
+//! exit code (docs/firmware.md). On hardware without a debugger this would trap; the loop
 //! after it keeps the core parked either way.
 
 #![allow(unsafe_code)]

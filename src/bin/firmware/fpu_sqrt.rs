@@ -1,5 +1,5 @@
 //! The tick's square root on the FPU: `VSQRT.F32`, one instruction where `libm::sqrtf` is
-//! a software routine of about 78 (FIRMWARE.md). Both are correctly rounded (IEEE 754), so
+//! a software routine of about 78 (docs/firmware.md). Both are correctly rounded (IEEE 754), so
 //! the results are bit-identical to the `Libm` backend on the host.
 
 #![allow(unsafe_code)]

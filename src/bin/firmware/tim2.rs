@@ -1,6 +1,6 @@
 //! TIM2 as an instruction counter: under QEMU's `-icount shift=0` one instruction is one
 //! virtual nanosecond and TIM2 on `netduinoplus2` counts at 1 GHz, so its 32-bit count is
-//! the number of retired instructions (FIRMWARE.md). On hardware it would count timer
+//! the number of retired instructions (docs/firmware.md). On hardware it would count timer
 //! ticks instead.
 
 #![allow(unsafe_code)]

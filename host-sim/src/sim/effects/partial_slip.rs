@@ -1,4 +1,4 @@
-//! Cattaneo–Mindlin partial slip (MODEL.md, the paper's Eq. 4 and 5): below gross slip the
+//! Cattaneo–Mindlin partial slip (docs/model.md, the paper's Eq. 4 and 5): below gross slip the
 //! contact's edge already slides, the stick zone shrinks to `â = a(1 − T/μN)^{1/3}`, and
 //! the fingertip deflects tangentially by
 //! `δ = 3μN/(16a)·((2−ν)/G)·[1 − (1 − T/μN)^{2/3}]`. The plant reports `δ` (the

@@ -1,4 +1,4 @@
-//! Skewed pressure in the true contact (the paper's Eq. 6–9, 16, 17 as MODEL.md reads
+//! Skewed pressure in the true contact (the paper's Eq. 6–9, 16, 17 as docs/model.md reads
 //! them): under tangential load the pressure peak moves toward the edge, which changes
 //! the true limit surface. The ground truth is then built from the skewed surface;
 //! the controller is not told (it models the symmetric profile).

@@ -108,7 +108,7 @@ def required_force(
     n_min: float = 0.2,
     n_max: float = 20.0,
 ) -> dict[str, Any]:
-    """MODEL.md's slip-prevention rule for many loads, as ``host-sim required-force``.
+    """docs/model.md's slip-prevention rule for many loads, as ``host-sim required-force``.
 
     ``ft`` |f_t| [N] and ``mn`` |m_n| [N·m] are numbers or arrays (broadcast together; signs
     are ignored); ``mu`` the friction coefficient; ``c`` [m/N^γ] and ``gamma`` the contact

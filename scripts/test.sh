@@ -23,7 +23,6 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install --quiet --upgrade pip
 .venv/bin/python -m pip install --quiet maturin numpy pytest mujoco matplotlib
 .venv/bin/python -m pip install --quiet ./python
 set +e

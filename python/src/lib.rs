@@ -674,7 +674,7 @@ impl Controller {
                 "ft: expected a number or a pair of numbers [N]",
             ));
         };
-        if !(t.is_finite() && t >= 0.0 && t < 1.8e13) {
+        if !((0.0..1.8e13).contains(&t)) {
             return Err(bad(
                 py,
                 "t",

@@ -1,0 +1,52 @@
+from typing import Any, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from ._softgrip import CONFIG_FIELDS as CONFIG_FIELDS
+from ._softgrip import ConfigError as ConfigError
+from ._softgrip import Controller as Controller
+from ._softgrip import TickStatus as TickStatus
+
+__version__: str
+
+ArrayLike = Union[float, Sequence[float], npt.NDArray[np.float64]]
+
+def default_config() -> dict[str, Any]: ...
+def half_width(c: float, gamma: float, normal_force: float) -> float:
+    """Contact half-width a = c·N^γ [m] at normal_force [N]."""
+
+def fls(
+    shape: Literal["rect", "disc"] = "rect",
+    k: float = 2.0,
+    aspect: float = 1.0,
+    skew: float = 0.0,
+    alpha: float = 1.1,
+    samples: int = 64,
+    *,
+    locus: Optional[float] = None,
+    order: int = 28,
+    at: Optional[ArrayLike] = None,
+) -> dict[str, Any]:
+    """One friction limit surface: arrays d (d_c/a), f (|f_t|/(μN)), m (|m_n|/(μNa)),
+    pitch, ellipse (least squares), inscribed (with force overhead [%])."""
+
+def required_force(
+    ft: ArrayLike,
+    mn: ArrayLike,
+    mu: float,
+    c: float,
+    gamma: float,
+    *,
+    shape: Literal["rect", "disc"] = "rect",
+    length: float = 0.01,
+    k: float = 2.0,
+    safety: float = 1.3,
+    mode: Literal["ellipse", "table"] = "ellipse",
+    skew: float = 0.0,
+    alpha: float = 1.1,
+    locus: Optional[float] = None,
+    n_min: float = 0.2,
+    n_max: float = 20.0,
+) -> dict[str, Any]:
+    """N_req(s) [N] for loads ft [N], mn [N·m], vectorised; as host-sim required-force."""

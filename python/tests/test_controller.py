@@ -1,0 +1,136 @@
+"""softgrip.Controller: defaults, rate limits, slip raising the margin, reconfiguration."""
+
+import math
+
+import pytest
+
+import softgrip
+
+DT = 1e-3
+
+
+def test_defaults_are_the_rust_defaults():
+    d = softgrip.default_config()
+    assert set(d) == set(softgrip.CONFIG_FIELDS)
+    assert d["mu"] == 0.8 and d["shape"] == "rect" and d["k"] == 2.0 and d["skew"] is None
+    assert d["safety"] == 1.3 and d["n_min_n"] == 0.2 and d["n_max_n"] == 20.0
+    assert d["rise_rate_n_per_s"] == 400.0 and d["fall_rate_n_per_s"] == 20.0
+    assert d["mode"] == "ellipse" and d["force_nodes"] == 48
+    assert math.isinf(d["actuator_slew_n_per_s"])
+    assert softgrip.Controller().config == d
+
+
+def test_every_field_is_a_keyword():
+    cfg = dict(
+        mu=0.6, shape="disc", k=4.0, skew=(0.5, 1.1, 0.25), c_m_per_n_gamma=3e-3, gamma=0.4,
+        half_length_m=0.02, safety=1.5, n_min_n=0.3, n_max_n=25.0, rise_rate_n_per_s=300.0,
+        fall_rate_n_per_s=10.0, tick_period_s=2e-3, stale_timeout_s=0.05, fault_force_n=5.0,
+        force_range_n=50.0, moment_range_nm=1.0, mode="table", force_nodes=32,
+        quadrature_order=20, table_samples=32, aspect_count=6, actuator_lag_s=0.01,
+        actuator_slew_n_per_s=100.0,
+    )
+    assert set(cfg) == set(softgrip.CONFIG_FIELDS)
+    c = softgrip.Controller(**cfg)
+    assert c.config == cfg
+
+
+def test_tick_matches_required_force_and_status_fields():
+    c = softgrip.Controller()
+    cmd, st = c.tick((1.0, 0.2), 0.004, DT)
+    assert st.status == "ok"
+    assert st.command_n == cmd == c.command_n
+    # The pure rule, with the same load (|f_t| of the two components).
+    assert st.required_n == pytest.approx(c.required_force(math.hypot(1.0, 0.2), 0.004), rel=1e-12)
+    assert st.n_slip_n == pytest.approx(c.required_force(math.hypot(1.0, 0.2), 0.004, 1.0), rel=1e-12)
+    assert st.n_slip_n < st.required_n
+    assert st.mu_estimate == 0.8 and st.margin == 1.0 and not st.fault_active
+    assert "TickStatus(" in repr(st)
+
+
+def test_rise_and_fall_rate_limits():
+    c = softgrip.Controller(rise_rate_n_per_s=400.0, fall_rate_n_per_s=20.0)
+    prev = c.command_n
+    t = 0.0
+    target = c.required_force(3.0, 0.01)
+    for _ in range(100):
+        t += DT
+        cmd, st = c.tick(3.0, 0.01, t)
+        assert cmd - prev <= 400.0 * DT + 1e-12
+        prev = cmd
+    assert cmd == pytest.approx(target, rel=1e-12)
+    for _ in range(100):
+        t += DT
+        cmd, _ = c.tick(0.0, 0.0, t)
+        assert prev - cmd <= 20.0 * DT + 1e-12
+        assert prev - cmd == pytest.approx(20.0 * DT, rel=1e-9)
+        prev = cmd
+
+
+def test_slip_raises_the_margin_and_jumps():
+    c = softgrip.Controller()
+    t = 0.0
+    for _ in range(50):
+        t += DT
+        before, st0 = c.tick(1.0, 0.004, t, normal_force=c.command_n)
+    t += DT
+    cmd, st = c.tick(1.0, 0.004, t, slip="incipient", normal_force=before)
+    assert st.margin == pytest.approx(1.15)
+    assert st.required_n > st0.required_n
+    assert cmd == pytest.approx(st.required_n)  # the emergency rise: at once, past the rate
+    for _ in range(25):  # the response steps again only after 20 ms (counted in ticks)
+        t += DT
+        cmd, _ = c.tick(1.0, 0.004, t, normal_force=cmd)
+    t += DT
+    cmd2, st2 = c.tick(1.0, 0.004, t, slip="gross", normal_force=cmd)
+    assert st2.margin == pytest.approx(1.65)
+    assert cmd2 > cmd
+    # None and "none" are the same as no signal.
+    t += DT
+    _, st3 = c.tick(1.0, 0.004, t, slip="none")
+    assert st3.margin == st2.margin
+
+
+def test_reconfigure_carries_the_command():
+    c = softgrip.Controller()
+    t = 0.0
+    for _ in range(100):
+        t += DT
+        cmd, _ = c.tick(3.0, 0.01, t)
+    assert cmd > 5.0
+    c.reconfigure(safety=1.5)
+    assert c.command_n == cmd  # not back to n_min
+    assert c.config["safety"] == 1.5
+    t += DT
+    cmd2, st = c.tick(3.0, 0.01, t)
+    assert abs(cmd2 - cmd) <= 400.0 * DT + 1e-12  # rate limits apply from there
+    # A fresh controller starts at n_min instead.
+    assert softgrip.Controller(safety=1.5).command_n == 0.2
+
+
+def test_reconfigure_clamps_into_the_new_range():
+    c = softgrip.Controller()
+    t = 0.0
+    for _ in range(100):
+        t += DT
+        c.tick(3.0, 0.01, t)
+    c.reconfigure(n_max_n=4.0, fault_force_n=4.0)
+    assert c.command_n == 4.0
+
+
+def test_idle_goes_stale_then_to_the_fault_force():
+    c = softgrip.Controller(stale_timeout_s=0.005, fault_force_n=10.0)
+    c.tick(1.0, 0.0, DT)
+    outs = [c.idle() for _ in range(10)]
+    assert all(st.status == "stale_input" for _, st in outs)
+    assert not outs[0][1].fault_active and outs[-1][1].fault_active
+    assert outs[-1][0] > outs[0][0]
+
+
+def test_bad_measurements_are_faults_not_exceptions():
+    c = softgrip.Controller()
+    _, st = c.tick(math.nan, 0.0, DT)
+    assert st.status == "sensor_fault"
+    _, st = c.tick(1.0, 0.0, DT)
+    assert st.status == "ok"
+    _, st = c.tick(1.0, 0.0, DT)  # the same timestamp again
+    assert st.status == "stale_input"

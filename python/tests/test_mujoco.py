@@ -1,0 +1,57 @@
+"""A short MuJoCo grasp: softgrip holds the box with less mean force than the weakest
+constant grip that also holds it."""
+
+import importlib.util
+import pathlib
+import sys
+
+import pytest
+
+mujoco = pytest.importorskip("mujoco")
+
+EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "mujoco_grasp.py"
+
+
+@pytest.fixture(scope="module")
+def grasp():
+    spec = importlib.util.spec_from_file_location("mujoco_grasp", EXAMPLE)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["mujoco_grasp"] = mod  # dataclasses look their module up
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_softgrip_holds_with_less_force_than_constant_grips(grasp):
+    mu_t = grasp.torsional_coefficient(grasp.operating_force())
+    soft = grasp.run(grasp.Softgrip(), mu_t)
+    assert soft.held, soft
+    constants = [grasp.run(grasp.Constant(f), mu_t) for f in (8.0, 10.0, 12.0, 16.0)]
+    holding = [r for r in constants if r.held]
+    assert holding, constants
+    weakest = min(holding, key=lambda r: r.mean_force_n)
+    assert soft.mean_force_n < weakest.mean_force_n, (soft, weakest)
+    # The weakest constant that fails does fail (the scene is not trivially easy).
+    assert not constants[0].held
+
+
+def test_coulomb_baseline_drops_under_torsion(grasp):
+    mu_t = grasp.torsional_coefficient(grasp.operating_force())
+    r = grasp.run(grasp.Coulomb(), mu_t, duration=1.2)
+    assert not r.held
+
+
+def test_cone_matches_the_fls_in_torsion_at_the_operating_force(grasp):
+    n_star = grasp.operating_force()
+    mu_t = grasp.torsional_coefficient(n_star)
+    rows = grasp.cone_vs_fls(mu_t, [n_star])
+    assert abs(rows[0]["torsion_gap_pct"]) < 1e-9
+    assert rows[0]["min_gap_pct"] >= -1e-9  # the exact disc surface lies inside the cone
+
+
+def test_json_output(grasp, capsys):
+    import json
+
+    assert grasp.main(["--json", "--duration", "0.5"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert {r["controller"] for r in out["results"]} >= {"softgrip", "coulomb s·f_t/μ"}
+    assert out["cone_vs_fls"]

@@ -703,8 +703,9 @@ fn solves_stay_far_below_the_iteration_cap() {
             "{name}: Illinois iterations per solve: mean {:.1} (f64), worst {worst64} (f64), {worst32} (f32), cap {MAX_ILLINOIS_ITERATIONS}",
             total as f64 / count as f64
         );
+        // Well below the cap (16): a test at the cap itself could never fail.
         assert!(
-            worst64 <= 16 && worst32 <= 16,
+            worst64 <= 12 && worst32 <= 12,
             "{name}: {worst64} {worst32}"
         );
     }

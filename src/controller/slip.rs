@@ -69,7 +69,7 @@ impl SlipSignal {
 }
 
 /// Margin added on an incipient slip signal (to a margin that starts at 1).
-pub const MARGIN_STEP_INCIPIENT: f64 = 0.1;
+pub const MARGIN_STEP_INCIPIENT: f64 = 0.05;
 /// Margin added on a gross slip signal.
 pub const MARGIN_STEP_GROSS: f64 = 0.3;
 /// The largest margin (the command is capped by `N_max` in any case).
@@ -88,9 +88,9 @@ pub const LOOKBACK_S: f64 = 0.01;
 /// Least time between two steps of the margin while a signal persists [s].
 pub const REFRACTORY_S: f64 = 0.02;
 /// Slip-free time before the margin starts to relax [s].
-pub const MARGIN_QUIET_S: f64 = 0.25;
+pub const MARGIN_QUIET_S: f64 = 0.1;
 /// Time constant of the margin's relaxation [s].
-pub const MARGIN_RELAX_TAU_S: f64 = 0.5;
+pub const MARGIN_RELAX_TAU_S: f64 = 0.2;
 /// Slip-free time before the estimate `μ̂` starts to relax [s].
 pub const QUIET_S: f64 = 1.0;
 /// Time constant of the estimate's relaxation [s].

@@ -25,7 +25,7 @@ pub struct Sweep {
 }
 
 /// Safety factors swept for softgrip (default 1.3).
-const SOFTGRIP_SAFETY: &[f64] = &[1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.75, 2.0];
+const SOFTGRIP_SAFETY: &[f64] = &[1.0, 1.1, 1.2, 1.25, 1.3, 1.35, 1.4, 1.5, 1.75, 2.0];
 /// Safety factors swept for the model-based baselines (default 1.3, as softgrip's).
 const BASELINE_SAFETY: &[f64] = &[1.0, 1.3, 1.6, 2.0, 3.0];
 

@@ -1,0 +1,235 @@
+//! `Controller`: the per-tick controller, its status and reconfiguration.
+
+use crate::*;
+
+/// What one tick decided, besides the command (Rust's `TickOutput`).
+#[pyclass(frozen, get_all, module = "softgrip")]
+#[derive(Clone)]
+pub(crate) struct TickStatus {
+    /// "ok", "saturated", "sensor_fault" or "stale_input".
+    status: &'static str,
+    /// The commanded normal force [N].
+    command_n: f64,
+    /// `N_req(s)` with the present margin [N].
+    required_n: f64,
+    /// `N_slip = N_req(1)` [N].
+    n_slip_n: f64,
+    /// The load's utilisation of the limit surface at the measured normal force [1].
+    utilisation: f64,
+    /// Whether the input has been bad or stale for longer than the stale timeout.
+    fault_active: bool,
+    /// Illinois iterations spent in this tick.
+    iterations: u8,
+    /// The friction coefficient the controller believes now [1].
+    mu_estimate: f64,
+    /// The margin multiplying the safety factor [1].
+    margin: f64,
+}
+
+#[pymethods]
+impl TickStatus {
+    fn __repr__(&self) -> String {
+        format!(
+            "TickStatus(status={:?}, command_n={}, required_n={}, n_slip_n={}, \
+             utilisation={}, fault_active={}, iterations={}, mu_estimate={}, margin={})",
+            self.status,
+            self.command_n,
+            self.required_n,
+            self.n_slip_n,
+            self.utilisation,
+            if self.fault_active { "True" } else { "False" },
+            self.iterations,
+            self.mu_estimate,
+            self.margin
+        )
+    }
+}
+
+impl From<TickOutput<f64>> for TickStatus {
+    fn from(o: TickOutput<f64>) -> Self {
+        Self {
+            status: o.status.name(),
+            command_n: o.command_n,
+            required_n: o.required_n,
+            n_slip_n: o.n_slip_n,
+            utilisation: o.utilisation,
+            fault_active: o.fault_active,
+            iterations: o.iterations,
+            mu_estimate: o.mu_estimate,
+            margin: o.margin,
+        }
+    }
+}
+
+/// The slip-prevention controller (f64 precompute and tick, libm).
+///
+/// `Controller(**config)`: keywords are `ControllerConfig`'s fields (see
+/// `softgrip.default_config()`): forces in N, moments in N·m, lengths in m, times in s,
+/// rates in N/s. A bad value raises `ConfigError` (a `ValueError`) naming the field.
+#[pyclass(module = "softgrip")]
+pub(crate) struct Controller {
+    inner: CoreController<f64, Libm>,
+}
+
+pub(crate) fn slip_of(py: Python<'_>, v: Option<&Bound<'_, PyAny>>) -> PyResult<SlipSignal> {
+    let Some(v) = v else {
+        return Ok(SlipSignal::None);
+    };
+    if v.is_none() {
+        return Ok(SlipSignal::None);
+    }
+    let s: String = v
+        .extract()
+        .map_err(|_| PyTypeError::new_err("slip: expected None or a string"))?;
+    match s.as_str() {
+        "none" => Ok(SlipSignal::None),
+        "incipient" => Ok(SlipSignal::Incipient),
+        "gross" => Ok(SlipSignal::Gross),
+        other => Err(bad(
+            py,
+            "slip",
+            format!("slip: {other:?} is not a slip signal, expected None, \"none\", \"incipient\" or \"gross\""),
+        )),
+    }
+}
+
+#[pymethods]
+impl Controller {
+    #[new]
+    #[pyo3(signature = (**config))]
+    fn new(py: Python<'_>, config: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let cfg = apply(py, ControllerConfig::default(), config)?;
+        Ok(Self {
+            inner: build(py, cfg)?,
+        })
+    }
+
+    /// One control tick. `ft`: the tangential force [N], `|f_t|` or its two components;
+    /// `mn`: the torsional moment [N·m]; `t`: the sensor's timestamp [s] (it must
+    /// increase; rounded to µs); `slip`: None, "none", "incipient" or "gross";
+    /// `normal_force`: the measured normal force [N] (default: the present command).
+    /// Returns `(command [N], TickStatus)`.
+    #[pyo3(signature = (ft, mn, t, slip=None, normal_force=None))]
+    fn tick(
+        &mut self,
+        py: Python<'_>,
+        ft: &Bound<'_, PyAny>,
+        mn: f64,
+        t: f64,
+        slip: Option<&Bound<'_, PyAny>>,
+        normal_force: Option<f64>,
+    ) -> PyResult<(f64, TickStatus)> {
+        let tangential = if let Ok(x) = ft.extract::<f64>() {
+            [x, 0.0]
+        } else if let Ok((x, y)) = ft.extract::<(f64, f64)>() {
+            [x, y]
+        } else if let Ok(v) = ft.extract::<Vec<f64>>() {
+            match v.as_slice() {
+                [x, y] => [*x, *y],
+                _ => {
+                    return Err(bad(
+                        py,
+                        "ft",
+                        format!("ft: expected a number or 2 components, got {}", v.len()),
+                    ))
+                }
+            }
+        } else {
+            return Err(PyTypeError::new_err(
+                "ft: expected a number or a pair of numbers [N]",
+            ));
+        };
+        if !((0.0..1.8e13).contains(&t)) {
+            return Err(bad(
+                py,
+                "t",
+                format!("t: {t} is out of range, expected 0 <= t [s] < 1.8e13"),
+            ));
+        }
+        let m = Measurement {
+            tangential_force_n: tangential,
+            torsional_moment_nm: mn,
+            normal_force_n: normal_force.unwrap_or(self.inner.command_n()),
+            timestamp_us: (t * 1e6).round() as u64,
+            slip: slip_of(py, slip)?,
+        };
+        let out = self.inner.tick(&m);
+        Ok((out.command_n, out.into()))
+    }
+
+    /// A tick with no measurement. Returns `(command_n, TickStatus)`.
+    fn idle(&mut self) -> (f64, TickStatus) {
+        let out = self.inner.idle();
+        (out.command_n, out.into())
+    }
+
+    /// A new configuration (the present one with these fields changed) that takes over
+    /// from the present controller: the command carries over.
+    #[pyo3(signature = (**config))]
+    fn reconfigure(&mut self, py: Python<'_>, config: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        let cfg = apply(py, *self.inner.config(), config)?;
+        let mut next = build(py, cfg)?;
+        next.take_over_from(&self.inner);
+        self.inner = next;
+        Ok(())
+    }
+
+    /// Back to the start-up state (command `n_min_n`), keeping the grid.
+    fn reset(&mut self) {
+        self.inner.reset();
+    }
+
+    /// `N_req` [N] of a load without touching the state (`safety=1` gives `N_slip`).
+    #[pyo3(signature = (ft, mn, safety=None))]
+    fn required_force(&self, ft: f64, mn: f64, safety: Option<f64>) -> Option<f64> {
+        let s = safety.unwrap_or(self.inner.config().safety);
+        self.inner.required_force(ft, mn, s).map(|r| r.force_n)
+    }
+
+    /// Utilisation of a load at a normal force, without touching the state.
+    fn utilisation(&self, ft: f64, mn: f64, normal_force: f64) -> Option<f64> {
+        self.inner.utilisation(ft, mn, normal_force)
+    }
+
+    #[getter]
+    fn command_n(&self) -> f64 {
+        self.inner.command_n()
+    }
+
+    #[getter]
+    fn mu_estimate(&self) -> f64 {
+        self.inner.mu_estimate()
+    }
+
+    #[getter]
+    fn margin(&self) -> f64 {
+        self.inner.margin()
+    }
+
+    #[getter]
+    fn time_rejections(&self) -> u32 {
+        self.inner.time_rejections()
+    }
+
+    /// The configuration as a dict of `ControllerConfig` fields.
+    #[getter]
+    fn config<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        config_dict(py, self.inner.config())
+    }
+
+    /// `(A, B)`: the semi-axes of the inscribed ellipse ellipse mode tests against.
+    #[getter]
+    fn ellipse_axes(&self) -> (f64, f64) {
+        let [sf, sm] = self.inner.capacity().demand_scale();
+        (1.0 / sf, 1.0 / sm)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let d = config_dict(py, self.inner.config())?;
+        let items: Vec<String> = d
+            .iter()
+            .map(|(k, v)| Ok(format!("{}={}", k, v.repr()?)))
+            .collect::<PyResult<_>>()?;
+        Ok(format!("Controller({})", items.join(", ")))
+    }
+}

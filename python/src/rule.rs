@@ -1,0 +1,138 @@
+//! `required_force`: the controller's rule over arrays of loads.
+
+use crate::*;
+
+/// The keyword of `required_force` a configuration field corresponds to.
+pub(crate) fn rf_name(param: &str) -> &str {
+    match param {
+        "c_m_per_n_gamma" => "c",
+        "half_length_m" => "length",
+        "n_min_n" | "fault_force_n" => "n_min",
+        "n_max_n" => "n_max",
+        "force_range_n" => "ft",
+        "moment_range_nm" => "mn",
+        "delta_over_a" => "skew",
+        "order" => "quadrature_order",
+        other => other,
+    }
+}
+
+/// `N_req` for many loads with one controller (see `softgrip.required_force`): the same
+/// configuration and computation as `host-sim required-force` (f64 precompute, f64 libm
+/// tick, 64 force nodes). Returns a dict of lists plus `ellipse_axes`.
+#[pyfunction]
+#[pyo3(signature = (ft, mn, mu, c, gamma, shape, length, k, safety, mode, skew, alpha, locus, n_min, n_max))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn required_force<'py>(
+    py: Python<'py>,
+    ft: Vec<f64>,
+    mn: Vec<f64>,
+    mu: f64,
+    c: f64,
+    gamma: f64,
+    shape: &str,
+    length: f64,
+    k: f64,
+    safety: f64,
+    mode: &str,
+    skew: f64,
+    alpha: f64,
+    locus: Option<f64>,
+    n_min: f64,
+    n_max: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    if ft.len() != mn.len() {
+        return Err(PyValueError::new_err("ft and mn must have the same length"));
+    }
+    let (mut ft_max, mut mn_max) = (0.0f64, 0.0f64);
+    for (name, v) in [("ft", &ft), ("mn", &mn)] {
+        for (i, &x) in v.iter().enumerate() {
+            if !x.is_finite() {
+                return Err(bad(
+                    py,
+                    name,
+                    format!("{name}: must be a finite number (element {i}: {x})"),
+                ));
+            }
+        }
+    }
+    for (&f, &m) in ft.iter().zip(&mn) {
+        ft_max = ft_max.max(f.abs());
+        mn_max = mn_max.max(m.abs());
+    }
+    let skew_v = if skew == 0.0 {
+        None
+    } else {
+        Some(SkewParams {
+            delta_over_a: skew,
+            alpha,
+            locus_over_a: locus.unwrap_or(skew / 2.0),
+        })
+    };
+    let cfg = ControllerConfig {
+        mu,
+        shape: shape_of(py, shape)?,
+        k,
+        skew: skew_v,
+        c_m_per_n_gamma: c,
+        gamma,
+        half_length_m: length,
+        safety,
+        n_min_n: n_min,
+        n_max_n: n_max,
+        fault_force_n: n_min,
+        // The sensor must be able to read every load (as `host-sim required-force`; the
+        // rule itself does not depend on it).
+        force_range_n: (2.0 * ft_max).max(100.0),
+        moment_range_nm: (2.0 * mn_max).max(2.0),
+        mode: mode_of(py, mode)?,
+        force_nodes: 64,
+        ..ControllerConfig::default()
+    };
+    let ctl = CoreController::<f64, Libm>::new_precomputed_in::<f64>(cfg)
+        .map_err(|e| core_err(py, e, rf_name))?;
+    let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma)
+        .map_err(|e| core_err(py, e, rf_name))?;
+    let n = ft.len();
+    let (mut req_v, mut slip_v, mut a_v, mut u_v, mut cmd_v, mut st_v) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    let none = || PyValueError::new_err("the solver returned no answer");
+    for (&f0, &m0) in ft.iter().zip(&mn) {
+        let (f, m) = (f0.abs(), m0.abs());
+        let req = ctl
+            .required_force(f, m, cfg.safety)
+            .ok_or_else(none)?
+            .force_n;
+        let slip = ctl.required_force(f, m, 1.0).ok_or_else(none)?.force_n;
+        let command = req.max(cfg.n_min_n).min(cfg.n_max_n);
+        let u = ctl.utilisation(f, m, command).ok_or_else(none)?;
+        let status = if req > cfg.n_max_n {
+            Status::Saturated
+        } else {
+            Status::Ok
+        };
+        req_v.push(req);
+        slip_v.push(slip);
+        a_v.push(contact.half_width_m(req));
+        u_v.push(u);
+        cmd_v.push(command);
+        st_v.push(status.name());
+    }
+    let out = PyDict::new(py);
+    out.set_item("normal_force", req_v)?;
+    out.set_item("n_slip", slip_v)?;
+    out.set_item("a", a_v)?;
+    out.set_item("utilisation", u_v)?;
+    out.set_item("status", st_v)?;
+    out.set_item("command", cmd_v)?;
+    out.set_item("mode", cfg.mode.name())?;
+    let [sf, sm] = ctl.capacity().demand_scale();
+    out.set_item("ellipse_axes", (1.0 / sf, 1.0 / sm))?;
+    Ok(out)
+}

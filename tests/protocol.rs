@@ -10,9 +10,10 @@ use serde::ser::SerializeTuple;
 use serde::Serialize;
 use softgrip::controller::{ControllerConfig, FingerShape, Mode, SkewParams, SlipSignal, Status};
 use softgrip::protocol::{
-    cobs_max_len, encode, fnv1a_32, CommandFrame, CostUnit, DecoderCounters, DefaultFrameDecoder,
-    FrameDecoder, FrameError, Reply, Request, SensorFrame, Stats, WireConfigError, CRC, CRC_LEN,
-    MAX_FRAME_LEN, MAX_FRAME_LEN_U16, MAX_MESSAGE_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
+    cobs_decode_in_place, cobs_encode_in_place, cobs_max_len, encode, fnv1a_32, CommandFrame,
+    CostUnit, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Reply, Request,
+    SensorFrame, Stats, WireConfigError, CRC, CRC_LEN, MAX_FRAME_LEN, MAX_FRAME_LEN_U16,
+    MAX_MESSAGE_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use softgrip::ConfigError;
 
@@ -1582,5 +1583,64 @@ proptest! {
         let g = got[0].as_ref().map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert!(same_bits(g, &reply));
         prop_assert!(stream.len() <= MAX_FRAME_LEN + 1);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The framing's own COBS against the `cobs` crate, byte for byte.
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4000))]
+
+    /// Any payload (zeros, runs of 254 and 255 non-zero bytes, the empty one) encodes to
+    /// exactly the `cobs` crate's block, and decodes back.
+    #[test]
+    fn own_cobs_encodes_as_the_cobs_crate_does(
+        data in prop_oneof![
+            proptest::collection::vec(any::<u8>(), 0..600),
+            proptest::collection::vec(prop_oneof![Just(0u8), 1u8..=255], 0..600),
+            (0usize..3, 250usize..260, 0usize..3).prop_map(|(a, n, b)| {
+                let mut v = vec![0u8; a];
+                v.extend((0..n).map(|i| (i % 255 + 1) as u8));
+                v.extend(vec![0u8; b]);
+                v
+            }),
+        ]
+    ) {
+        let mut want = vec![0u8; cobs::max_encoding_length(data.len())];
+        let want_len = cobs::encode(&data, &mut want);
+        let mut got = vec![0u8; cobs_max_len(data.len())];
+        got[..data.len()].copy_from_slice(&data);
+        let got_len = cobs_encode_in_place(&mut got, data.len()).expect("cobs_max_len suffices");
+        prop_assert_eq!(&got[..got_len], &want[..want_len]);
+        // A buffer of exactly the block's length suffices; one byte shorter is refused.
+        let mut exact = data.clone();
+        exact.resize(got_len, 0);
+        prop_assert_eq!(cobs_encode_in_place(&mut exact, data.len()), Some(got_len));
+        prop_assert_eq!(&exact[..], &want[..want_len]);
+        if got_len > data.len() {
+            let mut short = data.clone();
+            short.resize(got_len - 1, 0);
+            prop_assert_eq!(cobs_encode_in_place(&mut short, data.len()), None);
+        }
+        let mut block = got[..got_len].to_vec();
+        let n = cobs_decode_in_place(&mut block).expect("a valid block decodes");
+        prop_assert_eq!(&block[..n], &data[..]);
+    }
+
+    /// Any zero-free block (what the decoder collects between delimiters) is accepted by
+    /// the own decoder exactly when the `cobs` crate accepts it, with the same bytes.
+    #[test]
+    fn own_cobs_decodes_as_the_cobs_crate_does(
+        block in prop_oneof![
+            proptest::collection::vec(1u8..=255, 1..400),
+            proptest::collection::vec(prop_oneof![1u8..=8, Just(255u8), 1u8..=255], 1..400),
+        ]
+    ) {
+        let mut want = block.clone();
+        let want = cobs::decode_in_place(&mut want).ok().map(|n| want[..n].to_vec());
+        let mut got = block.clone();
+        let got = cobs_decode_in_place(&mut got).map(|n| got[..n].to_vec());
+        prop_assert_eq!(got, want);
     }
 }

@@ -12,6 +12,7 @@ use no_panic::no_panic;
 use softgrip::controller::{
     Controller, ControllerConfig, Libm, Measurement, Micromath, TickOutput,
 };
+use softgrip::controller::blob::Blob;
 use softgrip::device::{Device, NoActuator, NoClock};
 use softgrip::protocol::{encode, DefaultFrameDecoder, FrameError, Reply, Request, SensorFrame};
 use std::hint::black_box;
@@ -92,6 +93,14 @@ fn device_any(d: &mut Device<Libm>, r: Request) -> Reply {
 #[inline(never)]
 fn controller_new(cfg: ControllerConfig) -> bool {
     Controller::<f32, Libm>::new(cfg).is_ok()
+}
+
+/// Checking a table blob (header, CRC, sizes, monotonicity, arms against inverse arms)
+/// and building the controller it holds, as the prebuilt-tables firmware does.
+#[cfg_attr(not(feature = "scan"), no_panic)]
+#[inline(never)]
+fn blob_controller(bytes: &[u8]) -> bool {
+    Blob::parse(bytes).is_ok_and(|b| b.controller::<Libm>().is_ok())
 }
 
 /// An in-memory serial port for the device loop.
@@ -175,5 +184,6 @@ fn main() {
     let _ = device_sensor(&mut dev, black_box(frame));
     n += device_poll(&mut dev, &bytes);
     n += usize::from(controller_new(cfg));
+    n += usize::from(blob_controller(black_box(&bytes)));
     println!("{sum} {n}");
 }

@@ -6,8 +6,6 @@ use core::fmt;
 use core::marker::PhantomData;
 
 use crc::Crc;
-use postcard::ser_flavors::crc::CrcModifier;
-use postcard::ser_flavors::{Cobs, Slice};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -83,17 +81,133 @@ impl core::error::Error for FrameError {}
 /// `out` and returns the frame's length. Allocates nothing; `out` of [`MAX_FRAME_LEN`]
 /// bytes always suffices for a [`Request`](super::Request) or [`Reply`](super::Reply).
 ///
+/// postcard writes the message and its CRC to the start of `out`; [`cobs_encode_in_place`]
+/// then frames them where they lie. Both steps index only through checked accessors, so
+/// the encoder is proven free of panics at link time (`scripts/no-panic.sh`).
+///
 /// On error the contents of `out` are unspecified.
 pub fn encode<M: Serialize + ?Sized>(msg: &M, out: &mut [u8]) -> Result<usize, FrameError> {
-    let cobs = Cobs::try_new(Slice::new(out)).map_err(|_| FrameError::BufferTooSmall)?;
-    // postcard bytes go through the CRC (which appends itself at the end) into COBS,
-    // which writes the delimiter when finalised.
-    let flavor = CrcModifier::new(cobs, CRC.digest());
-    match postcard::serialize_with_flavor(msg, flavor) {
-        Ok(frame) => Ok(frame.len()),
-        Err(postcard::Error::SerializeBufferFull) => Err(FrameError::BufferTooSmall),
-        Err(_) => Err(FrameError::Serialize),
+    let raw_len = match postcard::to_slice_crc32(msg, out, CRC.digest()) {
+        Ok(bytes) => bytes.len(),
+        Err(postcard::Error::SerializeBufferFull) => return Err(FrameError::BufferTooSmall),
+        Err(_) => return Err(FrameError::Serialize),
+    };
+    let len = cobs_encode_in_place(out, raw_len).ok_or(FrameError::BufferTooSmall)?;
+    *out.get_mut(len).ok_or(FrameError::BufferTooSmall)? = 0;
+    Ok(len + 1)
+}
+
+/// The length of the COBS block of `data` (without a delimiter).
+fn cobs_len(data: &[u8]) -> usize {
+    let mut len = 1usize;
+    let mut run = 0u8;
+    let mut rest = data.len();
+    for &byte in data {
+        rest -= 1;
+        if byte == 0 {
+            len += 1;
+            run = 0;
+            continue;
+        }
+        len += 1;
+        run += 1;
+        if run == 0xFE {
+            run = 0;
+            if rest > 0 {
+                len += 1;
+            }
+        }
     }
+    if data.is_empty() {
+        0
+    } else {
+        len
+    }
+}
+
+/// COBS-encodes the first `n` bytes of `buf` in place (no delimiter) and returns the
+/// block's length, or `None` if `buf` is too short for the block ([`cobs_max_len`]`(n)`
+/// always suffices) or `n > buf.len()`.
+///
+/// Byte-for-byte the encoding of the `cobs` crate (tests/protocol.rs compares them): a
+/// code byte before each run of at most 254 non-zero bytes, `0xFF` for a full run that is
+/// not followed by an implied zero, nothing for empty data. The data is first moved right
+/// by the block's overhead, so the block written from the start never overtakes the bytes
+/// still to be read. Panic-free by construction: every access is checked.
+pub fn cobs_encode_in_place(buf: &mut [u8], n: usize) -> Option<usize> {
+    let block_len = cobs_len(buf.get(..n)?);
+    if block_len > buf.len() {
+        return None;
+    }
+    let shift = block_len - n;
+    for j in (0..n).rev() {
+        let byte = *buf.get(j)?;
+        *buf.get_mut(j + shift)? = byte;
+    }
+    if n == 0 {
+        return Some(0);
+    }
+    let mut code_at = 0usize;
+    let mut write = 1usize;
+    let mut code = 1u8;
+    for i in 0..n {
+        let byte = *buf.get(i + shift)?;
+        if byte == 0 {
+            *buf.get_mut(code_at)? = code;
+            code_at = write;
+            write += 1;
+            code = 1;
+            continue;
+        }
+        *buf.get_mut(write)? = byte;
+        write += 1;
+        code = code.wrapping_add(1);
+        if code == 0xFF {
+            *buf.get_mut(code_at)? = code;
+            if i + 1 == n {
+                // A full run at the very end: no further code byte.
+                return Some(write);
+            }
+            code_at = write;
+            write += 1;
+            code = 1;
+        }
+    }
+    *buf.get_mut(code_at)? = code;
+    Some(write)
+}
+
+/// Decodes a COBS block (without its delimiter) in place and returns the decoded length,
+/// or `None` for an invalid block: a zero byte inside it, or a code that points past its
+/// end. The decoded bytes never overtake the encoded ones, so decoding in place is exact.
+///
+/// Accepts exactly the blocks the `cobs` crate accepts and decodes them to the same bytes
+/// (tests/protocol.rs compares them); panic-free by construction: every access is checked.
+pub fn cobs_decode_in_place(block: &mut [u8]) -> Option<usize> {
+    let len = block.len();
+    let mut read = 0usize;
+    let mut write = 0usize;
+    while read < len {
+        let code = *block.get(read)?;
+        if code == 0 {
+            return None;
+        }
+        read += 1;
+        for _ in 1..code {
+            let byte = *block.get(read)?;
+            if byte == 0 {
+                return None;
+            }
+            *block.get_mut(write)? = byte;
+            write += 1;
+            read += 1;
+        }
+        if code != 0xFF && read < len {
+            *block.get_mut(write)? = 0;
+            write += 1;
+        }
+    }
+    Some(write)
 }
 
 /// The decoder's counters. All saturate at `u32::MAX`.
@@ -268,7 +382,7 @@ impl<const N: usize> FrameDecoder<N> {
             .buf
             .get_mut(..encoded_len)
             .and_then(|block| {
-                let decoded_len = cobs::decode_in_place(block).ok()?;
+                let decoded_len = cobs_decode_in_place(block)?;
                 let frame = block.get(..decoded_len)?;
                 let payload_len = decoded_len.checked_sub(CRC_LEN)?;
                 let (payload, crc) = frame.split_at_checked(payload_len)?;

@@ -98,8 +98,9 @@ mod message;
 
 pub use crate::controller::SlipSignal;
 pub use frame::{
-    cobs_max_len, encode, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Frames,
-    CRC, CRC_LEN, MAX_FRAME_LEN, MAX_MESSAGE_LEN,
+    cobs_decode_in_place, cobs_encode_in_place, cobs_max_len, encode, DecoderCounters,
+    DefaultFrameDecoder, FrameDecoder, FrameError, Frames, CRC, CRC_LEN, MAX_FRAME_LEN,
+    MAX_MESSAGE_LEN,
 };
 pub use message::{
     fnv1a_32, CommandFrame, CostUnit, Reply, Request, SensorFrame, Stats, WireConfigError,

@@ -35,9 +35,15 @@ pub fn pareto_svg(family: &str, rows: &[Row]) -> Result<String, String> {
     Ok(svg)
 }
 
-/// One controller's points, sorted by force: (force over oracle, drop rate [%], default).
-fn curves(rows: &[Row]) -> Vec<(&str, Vec<(f64, f64, bool)>)> {
-    let mut out: Vec<(&str, Vec<(f64, f64, bool)>)> = Vec::new();
+/// One setting's point: force over oracle [-], drop rate [%], whether it is the default.
+type Point = (f64, f64, bool);
+
+/// One controller's points, sorted by force.
+type Curve<'a> = (&'a str, Vec<Point>);
+
+/// Every controller's curve, in the order of the rows.
+fn curves(rows: &[Row]) -> Vec<Curve<'_>> {
+    let mut out: Vec<Curve<'_>> = Vec::new();
     for r in rows.iter().filter(|r| r.force_over_oracle.is_finite()) {
         let p = (r.force_over_oracle, 100.0 * r.drop_rate, r.default);
         match out.iter_mut().find(|(c, _)| *c == r.controller) {
@@ -115,14 +121,14 @@ fn draw_zoom<DB: DrawingBackend>(
     rows: &[Row],
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let all = curves(rows);
-    let inside = |p: &(f64, f64, bool)| p.1 <= ZOOM_DROP_PCT;
+    let inside = |p: &Point| p.1 <= ZOOM_DROP_PCT;
     // From the least force that drops at most ZOOM_DROP_PCT to 1.3 times the least force at
     // which some baseline drops nothing (or softgrip's farthest such point).
     let x_min = all
         .iter()
         .flat_map(|(_, pts)| pts.iter().filter(|p| inside(p)).map(|p| p.0))
         .fold(f64::INFINITY, f64::min);
-    let least_zero = |c: &(&str, Vec<(f64, f64, bool)>)| {
+    let least_zero = |c: &Curve<'_>| {
         c.1.iter()
             .filter(|p| p.1 == 0.0)
             .map(|p| p.0)
@@ -159,7 +165,7 @@ fn draw_zoom<DB: DrawingBackend>(
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 18))
         .draw()?;
-    let in_box = |p: &(f64, f64, bool)| inside(p) && p.0 >= x_min && p.0 <= x_max;
+    let in_box = |p: &Point| inside(p) && p.0 >= x_min && p.0 <= x_max;
     for (i, (_, pts)) in all.iter().enumerate() {
         let colour = RUN_COLOURS[i % RUN_COLOURS.len()];
         let style = ShapeStyle::from(&colour).stroke_width(2);
@@ -168,7 +174,7 @@ fn draw_zoom<DB: DrawingBackend>(
                 chart.draw_series(std::iter::once(PathElement::new(line.to_vec(), style)))?;
             }
         }
-        let shown: Vec<(f64, f64, bool)> = pts.iter().copied().filter(in_box).collect();
+        let shown: Vec<Point> = pts.iter().copied().filter(in_box).collect();
         draw_markers(&mut chart, &shown, colour)?;
     }
     Ok(())
@@ -177,7 +183,7 @@ fn draw_zoom<DB: DrawingBackend>(
 /// A point per setting, the default ringed.
 fn draw_markers<DB: DrawingBackend, X, Y>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
-    pts: &[(f64, f64, bool)],
+    pts: &[Point],
     colour: RGBColor,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
 where
@@ -199,8 +205,8 @@ where
 /// The part of the segment `a`–`b` inside `x ∈ x_range`, `0 ≤ y ≤ y_max` (Liang–Barsky),
 /// or `None` if none of it is.
 fn clip_segment(
-    a: (f64, f64, bool),
-    b: (f64, f64, bool),
+    a: Point,
+    b: Point,
     (x_lo, x_hi): (f64, f64),
     y_max: f64,
 ) -> Option<[(f64, f64); 2]> {

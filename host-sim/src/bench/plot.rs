@@ -231,12 +231,10 @@ fn clip_segment(
             }
         }
     }
-    (t0 <= t1).then(|| {
-        [
-            (a.0 + t0 * dx, a.1 + t0 * dy),
-            (a.0 + t1 * dx, a.1 + t1 * dy),
-        ]
-    })
+    (t0 <= t1).then_some([
+        (a.0 + t0 * dx, a.1 + t0 * dy),
+        (a.0 + t1 * dx, a.1 + t1 * dy),
+    ])
 }
 
 /// Rasterises SVG text to a PNG file, with the system's fonts (DejaVu Sans for

@@ -1,6 +1,7 @@
 //! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
 //! spreadsheets (`csv`) or for programs (`json`).
 
+use crate::input::{config_error, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -143,8 +144,13 @@ struct Report {
 }
 
 fn usage(e: ConfigError) -> CliError {
-    CliError::Usage(format!("--{e}"))
+    CliError::Usage(config_error(e.param(), &e))
 }
+
+/// How far `f̃ = f_t/(μN)` may exceed its physical bound 1 before the answer is refused as
+/// a quadrature too coarse for the surface: f32's documented accuracy (2e-6); at the
+/// default order the error is below 5e-11 in f64 (docs/model.md, accuracy).
+pub const F_NORM_EXCESS_MAX: f64 = 2e-6;
 
 fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
     Sample {
@@ -158,10 +164,11 @@ fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
 fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     // The surface's moment scale grows like l/a: beyond these the ellipse fit's fourth
     // powers overflow f32 (and, far out, f64).
-    if args.aspect.is_finite() && !(1e-6..=1e6).contains(&args.aspect) {
+    let rect = args.shape == ShapeArg::Rect;
+    if rect && args.aspect.is_finite() && !(1e-6..=1e6).contains(&args.aspect) {
         return Err(CliError::Usage(format!(
             "--aspect: {} is out of range, expected 1e-6 <= aspect <= 1e6",
-            args.aspect
+            short_num(args.aspect)
         )));
     }
     let order = QuadratureOrder::new(args.order).map_err(usage)?;
@@ -172,7 +179,7 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
         ShapeArg::Disc => Shape::Disc,
     };
     for (name, v) in [("alpha", args.alpha), ("aspect", args.aspect)] {
-        if !v.is_finite() {
+        if !v.is_finite() && (rect || name != "aspect") {
             return Err(CliError::Usage(format!(
                 "--{name}: must be a finite number"
             )));
@@ -184,7 +191,8 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
         if let Some(h) = args.locus {
             if !h.is_finite() || h < 0.0 {
                 return Err(CliError::Usage(format!(
-                    "--locus: {h} is out of range, expected locus >= 0"
+                    "--locus: {} is out of range, expected locus >= 0",
+                    short_num(h)
                 )));
             }
         }
@@ -193,13 +201,14 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     if !(2..=MAX_SAMPLES).contains(&args.samples) {
         return Err(CliError::Usage(format!(
             "--samples: {} is out of range, expected 2 ..= {MAX_SAMPLES}",
-            args.samples
+            short(&args.samples.to_string())
         )));
     }
     for &d in &args.at {
         if !(d.is_finite() && d >= 0.0) {
             return Err(CliError::Usage(format!(
-                "--at: {d} is out of range, expected finite d_c/a >= 0"
+                "--at: {} is out of range, expected finite d_c/a >= 0",
+                short_num(d)
             )));
         }
     }
@@ -254,8 +263,38 @@ fn plot(path: &std::path::Path, cfg: FlsConfig) -> Result<(), CliError> {
     .map_err(|e| CliError::Failed(format!("--plot: {e}")))
 }
 
+/// A model error naming the flag the user typed: `locus` when `--locus` was not given
+/// (it defaults to `--skew`/2) is reported on `--skew`.
+fn model_usage(args: &FlsArgs, e: ConfigError) -> CliError {
+    if e.param() == "locus" && args.locus.is_none() {
+        let reason = config_error("", &e);
+        let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
+        return CliError::Usage(format!(
+            "--skew: {} with the default --locus (skew/2 = {}): {reason}",
+            short_num(args.skew),
+            short_num(args.skew / 2.0)
+        ));
+    }
+    usage(e)
+}
+
+/// Refuses an answer with `f̃ > 1 +` [`F_NORM_EXCESS_MAX`]: no load can exceed `μN`, so
+/// such an `f̃` is quadrature error, from an `--order` too low for the surface.
+fn check_physical(args: &FlsArgs, samples: &[Sample]) -> Result<(), CliError> {
+    let worst = samples.iter().map(|s| s.f).fold(0.0_f64, f64::max);
+    if worst > 1.0 + F_NORM_EXCESS_MAX {
+        return Err(CliError::Usage(format!(
+            "--order: {} is too low for this surface: f_t/(μN) reaches {worst:.7} > 1, \
+             which no load can; raise --order (default {})",
+            args.order,
+            QuadratureOrder::DEFAULT.nodes_per_side()
+        )));
+    }
+    Ok(())
+}
+
 fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
-    let model = FlsModel::<T>::new(cfg).map_err(usage)?;
+    let model = FlsModel::<T>::new(cfg).map_err(|e| model_usage(args, e))?;
     let table: Box<FlsTable<T, { MAX_SAMPLES + 1 }>> =
         Box::new(FlsTable::sweep(&model, args.samples).map_err(usage)?);
     let fit = EllipseFit::fit(table.points())
@@ -277,6 +316,14 @@ fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
             .map(|&d| sample(&model.point(T::of(d))))
             .collect()
     };
+    let swept: Vec<Sample> = table
+        .points()
+        .iter()
+        .filter(|p| p.d.is_finite())
+        .map(sample)
+        .collect();
+    check_physical(args, &swept)?;
+    check_physical(args, &samples)?;
     let report = Report {
         shape: cfg.shape.name(),
         k: args.k,

@@ -6,6 +6,8 @@
 //! - [`sim`] and [`simulate_cmd`]: the grasp simulator (`host-sim simulate`).
 //! - [`tables_cmd`] and [`fls_plot`]: table export and verification, limit-surface
 //!   plots and parameter sweeps (`host-sim tables`).
+//! - [`input`]: bounded reading of every file the user names, and the value shortening
+//!   of error messages.
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
 //!   by default the firmware loop on a thread of its own behind a pseudo-terminal.
 
@@ -15,6 +17,7 @@ pub mod accuracy;
 pub mod bench;
 pub mod fls_cmd;
 pub mod fls_plot;
+pub mod input;
 pub mod link;
 pub mod required_force_cmd;
 pub mod sim;

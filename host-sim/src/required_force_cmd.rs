@@ -3,6 +3,7 @@
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
 use crate::fls_cmd::ShapeArg;
+use crate::input::{config_error, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -157,9 +158,90 @@ fn flag(param: &str) -> &str {
 }
 
 fn usage(e: ConfigError) -> CliError {
-    let text = e.to_string();
-    let rest = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
-    CliError::Usage(format!("--{}: {rest}", flag(e.param())))
+    CliError::Usage(config_error(flag(e.param()), &e))
+}
+
+/// Whether the controller of `cfg` builds in the precision of `args`.
+fn builds(args: &RequiredForceArgs, cfg: ControllerConfig) -> bool {
+    match args.precision {
+        PrecisionArg::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
+        PrecisionArg::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
+    }
+}
+
+/// A configuration error as the user should read it: naming the flags they typed.
+///
+/// - The core's `aspect` (`l/a`, derived from `--length` and the contact size) is
+///   reported on `--length`.
+/// - `locus` when `--locus` was not given (it defaults to `--skew`/2) is reported on
+///   `--skew`.
+/// - The sensor-range overflow (`force_range_n`, `moment_range_nm`: the worst load the
+///   derived sensor range admits, times `safety/μ`, overflows the tick) is put on the
+///   flag that causes it, found by retrying with that flag at an ordinary value:
+///   `--mu`/`--safety` (their ratio), else `--length`, else `--ft`/`--mn`.
+fn explain(args: &RequiredForceArgs, cfg: ControllerConfig, e: ConfigError) -> CliError {
+    let reason = config_error("", &e);
+    let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
+    match e.param() {
+        "aspect" => CliError::Usage(format!(
+            "--length: {} m gives a contact aspect l/a whose limit surface cannot be \
+             computed (l/a {reason})",
+            short_num(args.length)
+        )),
+        "locus" if args.locus.is_none() => CliError::Usage(format!(
+            "--skew: {} with the default --locus (skew/2 = {}): {reason}",
+            short_num(args.skew),
+            short_num(args.skew / 2.0)
+        )),
+        "force_range_n" | "moment_range_nm" => {
+            let overflow = "the worst load the sensor range admits, times safety/mu, \
+                            overflows the tick's precision";
+            let plain = ControllerConfig {
+                mu: 1.0,
+                safety: 1.0,
+                ..cfg
+            };
+            if builds(args, plain) {
+                // The more extreme of the two first.
+                let (mu, safety) = (
+                    format!("--mu {}", short_num(args.mu)),
+                    format!("--safety {}", short_num(args.safety)),
+                );
+                let (first, second) = if args.safety.ln().abs() > args.mu.ln().abs() {
+                    (safety, mu)
+                } else {
+                    (mu, safety)
+                };
+                return CliError::Usage(format!(
+                    "{first} with {second}: safety/mu = {}: {overflow}",
+                    short_num(args.safety / args.mu)
+                ));
+            }
+            let plain = ControllerConfig {
+                half_length_m: 0.01,
+                ..cfg
+            };
+            if builds(args, plain) {
+                return CliError::Usage(format!(
+                    "--length: {} m: {overflow}",
+                    short_num(args.length)
+                ));
+            }
+            let name = if cfg.force_range_n > 100.0 {
+                format!("--ft {}", short_num(args.ft))
+            } else if cfg.moment_range_nm > 2.0 {
+                format!("--mn {}", short_num(args.mn))
+            } else {
+                format!(
+                    "--ft {} with --mn {}",
+                    short_num(args.ft),
+                    short_num(args.mn)
+                )
+            };
+            CliError::Usage(format!("{name}: {overflow}"))
+        }
+        _ => usage(e),
+    }
 }
 
 fn finite(name: &str, v: f64) -> Result<f64, CliError> {
@@ -272,6 +354,18 @@ fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError
 /// Computes the answer for the arguments.
 pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliError> {
     let cfg = config(args)?;
+    if let Err(e) = cfg.validate() {
+        return Err(explain(args, cfg, e));
+    }
+    // The grid's own checks (its precision, the sensor range), named for the user; the
+    // controller is built again below in the precision and math asked for.
+    let built = match args.precision {
+        PrecisionArg::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).err(),
+        PrecisionArg::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).err(),
+    };
+    if let Some(e) = built {
+        return Err(explain(args, cfg, e));
+    }
     let (ft, mn) = (args.ft.abs(), args.mn.abs());
     let mut r = match (args.precision, args.math) {
         (PrecisionArg::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),

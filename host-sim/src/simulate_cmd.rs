@@ -1,11 +1,14 @@
 //! `host-sim simulate`: run grasp scenes against controllers and report.
 
+use crate::input::short;
 use crate::link::qemu::default_paths;
 use crate::sim::controllers::{self, LinkKind};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::report;
-use crate::sim::run::{run_on, RunOutput};
+use crate::sim::run::{run_streaming, RunOptions, RunOutput};
 use crate::sim::scene::Scene;
+use crate::sim::stream::RunStream;
+use crate::sim::trace::PlotTrace;
 use crate::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -82,7 +85,8 @@ fn controllers(args: &SimulateArgs) -> Result<Vec<String>, CliError> {
     for n in &names {
         if !controllers::NAMES.contains(&n.as_str()) {
             return Err(CliError::Usage(format!(
-                "--controller: unknown controller \"{n}\", expected all or one of {}",
+                "--controller: unknown controller \"{}\", expected all or one of {}",
+                short(n),
                 controllers::NAMES.join(", ")
             )));
         }
@@ -102,21 +106,33 @@ fn file_safe(s: &str) -> String {
         .collect()
 }
 
-fn write_scene_outputs(out: &Path, scene: &str, runs: &[RunOutput]) -> Result<(), CliError> {
+/// The CSV of one run of `scene` against `controller`.
+fn csv_path(out: &Path, scene: &str, controller: &str) -> PathBuf {
+    out.join(format!(
+        "timeseries_{}_{}.csv",
+        file_safe(scene),
+        file_safe(controller)
+    ))
+}
+
+/// The plots of one scene, from each run's bounded trace (`sim::trace`).
+fn write_scene_plots(
+    out: &Path,
+    scene: &str,
+    runs: &[(RunOutput, PlotTrace)],
+) -> Result<(), CliError> {
     let fail = |e: &dyn std::fmt::Display| CliError::Failed(format!("--out: {e}"));
-    for r in runs {
-        let name = format!(
-            "timeseries_{}_{}.csv",
-            file_safe(scene),
-            file_safe(&r.summary.controller)
-        );
-        report::write_csv(&out.join(name), &r.samples).map_err(|e| fail(&e))?;
-    }
+    let kept: Vec<Vec<Sample>> = runs.iter().map(|(_, t)| t.samples()).collect();
+    let slips: Vec<Vec<(f64, f64)>> = runs.iter().map(|(_, t)| t.slip_intervals()).collect();
     let traces: Vec<(&str, &[Sample])> = runs
         .iter()
-        .map(|r| (r.summary.controller.as_str(), r.samples.as_slice()))
+        .zip(&kept)
+        .map(|((r, _), s)| (r.summary.controller.as_str(), s.as_slice()))
         .collect();
-    let surface = runs.first().map(|r| r.surface.as_slice()).unwrap_or(&[]);
+    let surface = runs
+        .first()
+        .map(|(r, _)| r.surface.as_slice())
+        .unwrap_or(&[]);
     report::plot_surface(
         &out.join(format!("surface_{}.svg", file_safe(scene))),
         &format!("{scene}: load against the limit surface"),
@@ -124,10 +140,11 @@ fn write_scene_outputs(out: &Path, scene: &str, runs: &[RunOutput]) -> Result<()
         surface,
     )
     .map_err(|e| fail(&e))?;
-    report::plot_force(
+    report::plot_force_with_slips(
         &out.join(format!("force_{}.svg", file_safe(scene))),
         &format!("{scene}: normal force"),
         &traces,
+        &slips,
     )
     .map_err(|e| fail(&e))?;
     Ok(())
@@ -147,24 +164,46 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         }
         other => {
             return Err(CliError::Usage(format!(
-                "--link: \"{other}\" is not a link, expected inprocess, direct or qemu"
+                "--link: \"{}\" is not a link, expected inprocess, direct or qemu",
+                short(other)
             )))
         }
     };
     let paths = scenes(args)?;
     let names = controllers(args)?;
+    // Only softgrip runs on the device; the baselines always run in this process.
+    if args.link != "inprocess" && !names.iter().any(|n| n.starts_with("softgrip")) {
+        return Err(CliError::Usage(format!(
+            "--link {}: --controller {} runs in this process, not over a link; \
+             add a softgrip controller (e.g. --controller softgrip,{}) or drop --link",
+            args.link,
+            short(&args.controller),
+            short(&args.controller)
+        )));
+    }
     let mut loaded = Vec::new();
     for p in &paths {
-        let text = std::fs::read_to_string(p)
-            .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
-        let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
+        let (scene, text) = Scene::load_with_text(p).map_err(|e| CliError::Usage(e.to_string()))?;
         // Settings are checked here, before any run, so a bad one is a usage error.
+        let shown = short(&p.display().to_string());
         crate::sim::effects::Pipeline::build(&scene, Some(&text))
-            .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
+            .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
         let cfg = crate::sim::run::controller_config(&scene)
-            .map_err(|e| CliError::Usage(format!("{}: {e}", p.display())))?;
-        softgrip::controller::Controller::<f32>::new(cfg)
-            .map_err(|e| CliError::Usage(format!("{}: controller: {e}", p.display())))?;
+            .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
+        softgrip::controller::Controller::<f32>::new(cfg).map_err(|e| {
+            let e = crate::sim::run::config_error(&e, &scene.controller, &cfg);
+            CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
+        })?;
+        // The baselines' fixed patch (at controller.constant_force_n).
+        let constant_n = scene
+            .controller
+            .constant_force_n
+            .unwrap_or(cfg.fault_force_n);
+        for c in names.iter().filter(|c| !c.starts_with("softgrip")) {
+            controllers::Baseline::new(c, &cfg, constant_n).map_err(|e| {
+                CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
+            })?;
+        }
         loaded.push((scene, text));
     }
     std::fs::create_dir_all(&args.out)
@@ -183,11 +222,27 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         let mut runs = Vec::new();
         for c in &names {
             bar.set_message(format!("{} / {c}", scene.name));
-            let out = run_on(scene, Some(text), c, &link, Some(&bar)).map_err(CliError::Failed)?;
-            runs.push(out);
+            // Each tick goes to the CSV as it is produced; the plots get a bounded trace.
+            let path = csv_path(&args.out, &scene.name, c);
+            let mut stream = RunStream::create(&path)
+                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
+            let out = run_streaming(
+                scene,
+                Some(text),
+                c,
+                &link,
+                Some(&bar),
+                RunOptions::default(),
+                &mut stream,
+            )
+            .map_err(CliError::Failed)?;
+            let trace = stream
+                .finish()
+                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
+            runs.push((out, trace));
         }
-        write_scene_outputs(&args.out, &scene.name, &runs)?;
-        all.extend(runs.into_iter().map(|r| r.summary));
+        write_scene_plots(&args.out, &scene.name, &runs)?;
+        all.extend(runs.into_iter().map(|(r, _)| r.summary));
     }
     bar.finish_and_clear();
     let summary_path = args.out.join("summary.json");
@@ -306,7 +361,8 @@ fn mode_of(controller: &str) -> Option<&'static str> {
 /// The section sizes of an ELF file.
 pub fn elf_sections(path: &Path) -> Result<BTreeMap<String, u64>, String> {
     use object::{Object, ObjectSection};
-    let data = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let data = crate::input::read_capped(path, "--firmware", crate::input::ELF_CAP_BYTES)
+        .map_err(|e| e.to_string())?;
     let file = object::File::parse(&*data).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut out = BTreeMap::new();
     for name in [

@@ -112,8 +112,9 @@ pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
     let cfg = match &args.finger {
         None => ControllerConfig::default(),
         Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?;
+            let text =
+                crate::input::read_capped_text(p, "--finger", crate::input::FINGER_CAP_BYTES)
+                    .map_err(|e| usage(e.to_string()))?;
             let f: FingerFile = toml::from_str(&text)
                 .map_err(|e| usage(format!("--finger: {}: {}", p.display(), e.message().trim())))?;
             crate::sim::run::controller_config_for(&f.finger, &f.controller, f.tick_hz)
@@ -341,8 +342,8 @@ pub fn deviation(a: &Tables<'_, f32>, b: &Tables<'_, f32>) -> Option<(f64, &'sta
 pub const VERIFY_TOLERANCE: f64 = 1e-4;
 
 fn verify(file: &Path) -> Result<(), CliError> {
-    let bytes =
-        std::fs::read(file).map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
+    let bytes = crate::input::read_capped(file, "verify", crate::input::BLOB_CAP_BYTES)
+        .map_err(|e| CliError::Failed(e.to_string()))?;
     let blob =
         Blob::parse(&bytes).map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
     let cfg = blob.config();

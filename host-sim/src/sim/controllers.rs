@@ -102,7 +102,9 @@ pub struct SoftgripLink {
     sent: u64,
     lost: u64,
     base: (u32, u32, u32, u32),
-    tick_costs: Vec<u32>,
+    /// How many ticks cost each amount (a histogram, not a list: its size is bounded by
+    /// the distinct costs, not the run's length).
+    tick_costs: BTreeMap<u32, u64>,
 }
 
 impl SoftgripLink {
@@ -124,7 +126,7 @@ impl SoftgripLink {
             sent: 0,
             lost: 0,
             base,
-            tick_costs: Vec::new(),
+            tick_costs: BTreeMap::new(),
         })
     }
 }
@@ -163,7 +165,7 @@ impl GripController for SoftgripLink {
                     for _ in 0..4 {
                         match self.link.exchange(&Request::Sensor(*frame))? {
                             Reply::Command(c) if c.seq == frame.seq => {
-                                self.tick_costs.push(c.tick_cost);
+                                *self.tick_costs.entry(c.tick_cost).or_insert(0) += 1;
                                 answer = Some(Answer {
                                     command_n: f64::from(c.normal_force_n),
                                     status: c.status.name(),
@@ -206,14 +208,21 @@ impl GripController for SoftgripLink {
             "device_stack_peak_bytes".to_string(),
             f64::from(s.stack_peak_bytes),
         );
-        let mut c = self.tick_costs.clone();
-        c.sort_unstable();
-        if let (Some(first), Some(last)) = (c.first(), c.last()) {
+        let c = &self.tick_costs;
+        if let (Some((first, _)), Some((last, _))) = (c.first_key_value(), c.last_key_value()) {
+            // The element at index len/2 of the sorted costs, as before the histogram.
+            let half = c.values().sum::<u64>() / 2;
+            let mut seen = 0;
+            let mut median = *last;
+            for (cost, n) in c {
+                seen += n;
+                if seen > half {
+                    median = *cost;
+                    break;
+                }
+            }
             m.insert(format!("device_tick_min_{unit}"), f64::from(*first));
-            m.insert(
-                format!("device_tick_median_{unit}"),
-                f64::from(c[c.len() / 2]),
-            );
+            m.insert(format!("device_tick_median_{unit}"), f64::from(median));
             m.insert(format!("device_tick_max_{unit}"), f64::from(*last));
         }
         Ok(m)
@@ -265,16 +274,33 @@ enum Kind {
 
 impl Baseline {
     /// The baseline `name` for a controller configuration; `constant_n` is the constant
-    /// baseline's force and the force at which the fixed patch size is taken.
-    pub fn new(name: &str, cfg: &ControllerConfig, constant_n: f64) -> Option<Self> {
+    /// baseline's force and the force at which the fixed patch size is taken. `Ok(None)`
+    /// for a name that is not a baseline; an error (naming the scene key
+    /// `controller.constant_force_n`) when the fixed patch at that force has no limit
+    /// surface (a force that is not finite and positive, or whose contact size gives an
+    /// aspect `l/a` of 0 or ∞).
+    pub fn new(
+        name: &str,
+        cfg: &ControllerConfig,
+        constant_n: f64,
+    ) -> Result<Option<Self>, String> {
         let kind = match name {
             "constant" => Kind::Constant,
             "coulomb" => Kind::Coulomb,
             "box" => Kind::Box,
             "fixed-torsion" => Kind::FixedTorsion,
             "slip-servo" => Kind::SlipServo,
-            _ => return None,
+            _ => return Ok(None),
         };
+        let bad = |why: String| {
+            format!(
+                "controller.constant_force_n: {} N {why}",
+                crate::input::short_num(constant_n)
+            )
+        };
+        if !(constant_n > 0.0 && constant_n.is_finite()) {
+            return Err(bad("must be a finite number > 0".into()));
+        }
         // The fixed patch: the contact's size and pitch at the constant force.
         let a_ref = cfg.c_m_per_n_gamma * constant_n.powf(cfg.gamma);
         let shape = match cfg.shape {
@@ -290,9 +316,15 @@ impl Baseline {
             order: QuadratureOrder::DEFAULT,
         })
         .map(|m| m.pitch())
-        .ok()?;
+        .map_err(|e| {
+            bad(format!(
+                "gives the fixed patch of the baselines a = {} m, l/a = {}: {e}",
+                crate::input::short_num(a_ref),
+                crate::input::short_num(cfg.half_length_m / a_ref)
+            ))
+        })?;
         let dt = cfg.tick_period_s;
-        Some(Self {
+        Ok(Some(Self {
             name: name.to_string(),
             kind,
             limits: Limits {
@@ -312,7 +344,7 @@ impl Baseline {
             },
             sent: 0,
             lost: 0,
-        })
+        }))
     }
 }
 
@@ -406,11 +438,12 @@ pub fn build(
         "softgrip" => softgrip(None),
         "softgrip-ellipse" => softgrip(Some(Mode::Ellipse)),
         "softgrip-table" => softgrip(Some(Mode::Table)),
-        other => Baseline::new(other, cfg, constant_n)
+        other => Baseline::new(other, cfg, constant_n)?
             .map(|b| Box::new(b) as Box<dyn GripController>)
             .ok_or_else(|| {
                 format!(
-                    "--controller: unknown controller \"{other}\", expected all or one of {}",
+                    "--controller: unknown controller \"{}\", expected all or one of {}",
+                    crate::input::short(other),
                     NAMES.join(", ")
                 )
             }),

@@ -6,5 +6,7 @@ pub mod record;
 pub mod report;
 pub mod run;
 pub mod scene;
+pub mod stream;
 pub mod task;
+pub mod trace;
 pub mod truth;

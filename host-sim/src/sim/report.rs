@@ -445,8 +445,13 @@ fn slip_intervals(samples: &[Sample], merge_gap: f64) -> Vec<(f64, f64)> {
     if let Some(t0) = start {
         out.push((t0, last_t));
     }
+    merge_intervals(&out, merge_gap)
+}
+
+/// Merges time intervals (in time order) closer than `merge_gap`.
+fn merge_intervals(out: &[(f64, f64)], merge_gap: f64) -> Vec<(f64, f64)> {
     let mut merged: Vec<(f64, f64)> = Vec::with_capacity(out.len());
-    for (t0, t1) in out {
+    for &(t0, t1) in out {
         match merged.last_mut() {
             Some(prev) if t0 - prev.1 <= merge_gap => prev.1 = prev.1.max(t1),
             _ => merged.push((t0, t1)),
@@ -464,6 +469,19 @@ const LOAD_LABEL: &str = "tangential load (per contact)";
 /// intervals in which a run slips are shaded in that run's colour. Non-finite values are
 /// skipped (they break the line). The legend sits right of the plot.
 pub fn plot_force(path: &Path, title: &str, runs: &[(&str, &[Sample])]) -> Result<(), ReportError> {
+    let slips: Vec<Vec<(f64, f64)>> = runs.iter().map(|(_, s)| slip_intervals(s, 0.0)).collect();
+    plot_force_with_slips(path, title, runs, &slips)
+}
+
+/// [`plot_force`] with each run's slip intervals given (`slips[i]` for `runs[i]`, as
+/// `(start, end)` times [s]) instead of found in its samples: for samples decimated for
+/// plotting (`sim::trace`), whose intervals were taken from every tick.
+pub fn plot_force_with_slips(
+    path: &Path,
+    title: &str,
+    runs: &[(&str, &[Sample])],
+    slips: &[Vec<(f64, f64)>],
+) -> Result<(), ReportError> {
     let finite_t = || {
         runs.iter()
             .flat_map(|(_, s)| s.iter().map(|s| s.t_s))
@@ -514,8 +532,8 @@ pub fn plot_force(path: &Path, title: &str, runs: &[(&str, &[Sample])]) -> Resul
         // Shading first, so that the lines stay on top.
         let merge_gap = (t_max - t_min) / 1000.0;
         let mut first_shade = None;
-        for (i, (_, samples)) in runs.iter().enumerate() {
-            let intervals = slip_intervals(samples, merge_gap);
+        for (i, found) in slips.iter().enumerate().take(runs.len()) {
+            let intervals = merge_intervals(found, merge_gap);
             if intervals.is_empty() {
                 continue;
             }

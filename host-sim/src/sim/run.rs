@@ -128,9 +128,73 @@ pub fn controller_config_for(
         mode: Mode::Ellipse,
         ..d
     };
-    cfg.validate()
-        .map_err(|e| SceneError(format!("controller: {e}")))?;
+    cfg.validate().map_err(|e| config_error(&e, s, &cfg))?;
     Ok(cfg)
+}
+
+/// The scene key a controller configuration field comes from, for errors: the finger's
+/// keys under `finger.`, the settings under `controller.` (`mu` under `controller.` only
+/// when the scene sets it there); the tick period is `tick_hz`. (The core's derived
+/// `aspect`, `l/a`, is reported on `finger.half_length_m` by [`config_error`].)
+pub fn scene_key(param: &str, s: &crate::sim::scene::ControllerSettings) -> String {
+    match param {
+        "mu" if s.mu.is_some() => "controller.mu".into(),
+        "mu" => "finger.mu".into(),
+        "c_m_per_n_gamma" => "finger.c".into(),
+        "gamma" | "k" | "half_length_m" => format!("finger.{param}"),
+        "tick_period_s" => "tick_hz".into(),
+        other => format!("controller.{other}"),
+    }
+}
+
+/// A controller configuration error naming the scene key (see [`scene_key`]), its value
+/// shortened. The sensor-range overflow (`force_range_n`, `moment_range_nm`: the worst
+/// admitted load times `safety/μ` overflows the tick) names μ first, then the safety
+/// factor and the range, with their values.
+pub fn config_error(
+    e: &softgrip::ConfigError,
+    s: &crate::sim::scene::ControllerSettings,
+    cfg: &ControllerConfig,
+) -> SceneError {
+    use crate::input::short_num;
+    if matches!(e.param(), "force_range_n" | "moment_range_nm") {
+        let mu = if s.mu.is_some() {
+            "controller.mu"
+        } else {
+            "finger.mu"
+        };
+        return SceneError(format!(
+            "{mu} = {} with controller.safety = {} (safety/mu = {}) and \
+             controller.{} = {}: the worst load the sensor range admits, times safety/mu, \
+             overflows the tick's precision",
+            short_num(cfg.mu),
+            short_num(cfg.safety),
+            short_num(cfg.safety / cfg.mu),
+            e.param(),
+            short_num(if e.param() == "force_range_n" {
+                cfg.force_range_n
+            } else {
+                cfg.moment_range_nm
+            })
+        ));
+    }
+    if e.param() == "aspect" {
+        return SceneError(format!(
+            "finger.half_length_m = {} m with finger.c = {}, finger.gamma = {} \
+             (a = c·N^gamma) gives a contact of l/a = {} at some force, whose limit \
+             surface cannot be computed",
+            short_num(cfg.half_length_m),
+            short_num(cfg.c_m_per_n_gamma),
+            short_num(cfg.gamma),
+            match e {
+                softgrip::ConfigError::OutOfRange { value, .. } => short_num(*value),
+                _ => "∞".into(),
+            }
+        ));
+    }
+    let text = crate::input::config_error("", e);
+    let reason = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
+    SceneError(format!("{}: {reason}", scene_key(e.param(), s)))
 }
 
 /// Runs `scene` against the controller `controller`.
@@ -175,7 +239,23 @@ pub fn build_truth(scene: &Scene) -> Result<Truth, String> {
     .map_err(|e| e.to_string())
 }
 
-/// Runs `scene` against `controller` on `link_kind`, with `options`.
+/// Where a run's per-tick samples go, as they are produced.
+pub trait SampleSink {
+    /// Takes the next tick's sample; an error ends the run with it.
+    fn sample(&mut self, s: &Sample) -> Result<(), String>;
+}
+
+impl SampleSink for Vec<Sample> {
+    fn sample(&mut self, s: &Sample) -> Result<(), String> {
+        self.push(*s);
+        Ok(())
+    }
+}
+
+/// Runs `scene` against `controller` on `link_kind`, with `options`. Unless
+/// `options.skip_samples`, every tick's sample is collected into `RunOutput::samples`
+/// (memory grows with the run: about 136 bytes a tick); [`run_streaming`] hands them to a
+/// sink instead.
 pub fn run_with(
     scene: &Scene,
     text: Option<&str>,
@@ -183,6 +263,62 @@ pub fn run_with(
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
     options: RunOptions<'_>,
+) -> Result<RunOutput, String> {
+    if options.skip_samples {
+        return run_into(scene, text, controller, link_kind, progress, options, None);
+    }
+    let mut samples = Vec::new();
+    let mut out = run_into(
+        scene,
+        text,
+        controller,
+        link_kind,
+        progress,
+        options,
+        Some(&mut samples),
+    )?;
+    out.samples = samples;
+    Ok(out)
+}
+
+/// Runs `scene` against `controller` on `link_kind`, handing each tick's sample to `sink`
+/// as it is produced: the run itself keeps nothing per tick (`RunOutput::samples` is
+/// empty; `surface` is computed), so its memory does not grow with its duration.
+/// `options.skip_samples` is ignored.
+pub fn run_streaming(
+    scene: &Scene,
+    text: Option<&str>,
+    controller: &str,
+    link_kind: &LinkKind,
+    progress: Option<&ProgressBar>,
+    options: RunOptions<'_>,
+    sink: &mut dyn SampleSink,
+) -> Result<RunOutput, String> {
+    let options = RunOptions {
+        skip_samples: false,
+        ..options
+    };
+    run_into(
+        scene,
+        text,
+        controller,
+        link_kind,
+        progress,
+        options,
+        Some(sink),
+    )
+}
+
+/// The run: samples go to `sink` if there is one; the surface is computed unless
+/// `options.skip_samples`.
+fn run_into(
+    scene: &Scene,
+    text: Option<&str>,
+    controller: &str,
+    link_kind: &LinkKind,
+    progress: Option<&ProgressBar>,
+    options: RunOptions<'_>,
+    mut sink: Option<&mut dyn SampleSink>,
 ) -> Result<RunOutput, String> {
     let wall = Instant::now();
     let cfg = controller_config(scene).map_err(|e| e.to_string())?;
@@ -223,11 +359,6 @@ pub fn run_with(
         normal_n: cfg.n_min_n,
         ..World::default()
     };
-    let mut samples = Vec::with_capacity(if options.skip_samples {
-        0
-    } else {
-        ticks as usize
-    });
     let mut frames: Vec<(SensorFrame, LinkFate)> = Vec::with_capacity(4);
     let mut slip_seen: VecDeque<bool> = std::iter::repeat_n(false, detect_ticks).collect();
     let (mut v, mut omega, mut dist, mut rot) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
@@ -320,8 +451,8 @@ pub fn run_with(
         }
         max_micro = max_micro.max(w.micro_slip_m);
         let [mx, my] = sensed.tangential_force_n;
-        if !options.skip_samples {
-            samples.push(Sample {
+        if let Some(sink) = sink.as_deref_mut() {
+            sink.sample(&Sample {
                 t_s: w.t_s,
                 ft_n: ft,
                 mn_nm: mn,
@@ -338,7 +469,7 @@ pub fn run_with(
                 slip_distance_m: dist,
                 slip_rotation_rad: rot,
                 status,
-            });
+            })?;
         }
         core += since(t3);
         if has_actuator {
@@ -414,7 +545,7 @@ pub fn run_with(
             effects: pipeline.names(),
             metrics,
         },
-        samples,
+        samples: Vec::new(),
         surface,
     })
 }

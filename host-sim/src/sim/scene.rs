@@ -41,6 +41,7 @@
 //!
 //! A bad file is reported with the key and its line.
 
+use crate::input::{short, short_num, SCENE_CAP_BYTES};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -215,6 +216,10 @@ pub struct ControllerSettings {
     pub constant_force_n: Option<f64>,
 }
 
+/// Most ticks a scene may have (1e8: 28 hours at 1 kHz). `simulate` streams its samples,
+/// so the cap bounds run time, not memory.
+pub const MAX_TICKS: f64 = 1e8;
+
 /// A scene file that could not be used.
 #[derive(Debug)]
 pub struct SceneError(pub String);
@@ -254,16 +259,23 @@ pub fn line_of(text: &str, table: &str, key: &str) -> Option<usize> {
 impl Scene {
     /// Reads and checks a scene file. Errors name the file, the key and its line.
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
-        let mut scene =
-            Self::parse(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+        Self::load_with_text(path).map(|(scene, _)| scene)
+    }
+
+    /// [`Scene::load`], also giving the file's text (for the effects' line numbers). The
+    /// file is read with a cap of [`SCENE_CAP_BYTES`] (`crate::input`): a larger or
+    /// endless one (`/dev/zero`) is refused after reading at most the cap.
+    pub fn load_with_text(path: &Path) -> Result<(Self, String), SceneError> {
+        let shown = short(&path.display().to_string());
+        let text = crate::input::read_capped_text(path, "scene", SCENE_CAP_BYTES)
+            .map_err(|e| SceneError(e.message))?;
+        let mut scene = Self::parse(&text).map_err(|e| SceneError(format!("{shown}: {e}")))?;
         if scene.name.is_empty() {
             scene.name = path
                 .file_stem()
                 .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         }
-        Ok(scene)
+        Ok((scene, text))
     }
 
     /// Parses and checks scene text.
@@ -298,13 +310,38 @@ impl Scene {
             if v > 0.0 && v.is_finite() {
                 Ok(())
             } else {
-                Err(bad(table, key, format!("{v} must be a finite number > 0")))
+                Err(bad(
+                    table,
+                    key,
+                    format!("{} must be a finite number > 0", short_num(v)),
+                ))
             }
         };
         positive("", "duration_s", self.duration_s)?;
         positive("", "tick_hz", self.tick_hz)?;
-        if self.duration_s * self.tick_hz > 1e8 {
-            return Err(bad("", "duration_s", "more than 1e8 ticks".into()));
+        let ticks = (self.duration_s * self.tick_hz).round();
+        if ticks > MAX_TICKS {
+            return Err(bad(
+                "",
+                "duration_s",
+                format!(
+                    "{} s at tick_hz {} is more than 1e8 ticks",
+                    short_num(self.duration_s),
+                    short_num(self.tick_hz)
+                ),
+            ));
+        }
+        if ticks < 1.0 {
+            return Err(bad(
+                "",
+                "duration_s",
+                format!(
+                    "{} s at tick_hz {} is 0 ticks; a scene needs at least one \
+                     (duration_s >= 0.5/tick_hz)",
+                    short_num(self.duration_s),
+                    short_num(self.tick_hz)
+                ),
+            ));
         }
         for name in &self.effects {
             if !crate::sim::effects::NAMES.contains(&name.as_str()) {
@@ -312,7 +349,8 @@ impl Scene {
                     "",
                     "effects",
                     format!(
-                        "unknown effect \"{name}\", expected one of {}",
+                        "unknown effect \"{}\", expected one of {}",
+                        short(name),
                         crate::sim::effects::NAMES.join(", ")
                     ),
                 ));
@@ -321,9 +359,9 @@ impl Scene {
         for name in self.effect.keys() {
             if !crate::sim::effects::NAMES.contains(&name.as_str()) {
                 return Err(bad(
-                    &format!("effect.{name}"),
+                    &format!("effect.{}", short(name)),
                     "",
-                    format!("unknown effect \"{name}\""),
+                    format!("unknown effect \"{}\"", short(name)),
                 ));
             }
         }
@@ -331,7 +369,7 @@ impl Scene {
             return Err(bad(
                 "finger",
                 "shape",
-                format!("\"{}\" is not rect or disc", self.finger.shape),
+                format!("\"{}\" is not rect or disc", short(&self.finger.shape)),
             ));
         }
         positive("finger", "mu", self.finger.mu)?;
@@ -342,21 +380,21 @@ impl Scene {
             return Err(bad(
                 "finger",
                 "k",
-                format!("{} must be >= 1", self.finger.k),
+                format!("{} must be >= 1", short_num(self.finger.k)),
             ));
         }
         if !(0.0..=0.5).contains(&self.finger.gamma) {
             return Err(bad(
                 "finger",
                 "gamma",
-                format!("{} must lie in [0, 1/2]", self.finger.gamma),
+                format!("{} must lie in [0, 1/2]", short_num(self.finger.gamma)),
             ));
         }
         if !(0.0..0.5).contains(&self.finger.poisson) {
             return Err(bad(
                 "finger",
                 "poisson",
-                format!("{} must lie in [0, 1/2)", self.finger.poisson),
+                format!("{} must lie in [0, 1/2)", short_num(self.finger.poisson)),
             ));
         }
         positive("object", "mass_kg", self.object.mass_kg)?;
@@ -372,7 +410,10 @@ impl Scene {
                 return Err(bad(
                     "task",
                     "kind",
-                    format!("\"{}\" is not lift, hold, twist, shake or pull", p.kind),
+                    format!(
+                        "\"{}\" is not lift, hold, twist, shake or pull",
+                        short(&p.kind)
+                    ),
                 ));
             }
             let values = [
@@ -391,7 +432,7 @@ impl Scene {
                     "end_s",
                     format!(
                         "phase \"{}\" needs finite values and end_s > start_s",
-                        p.kind
+                        short(&p.kind)
                     ),
                 ));
             }
@@ -416,13 +457,19 @@ impl Scene {
         let x = v
             .as_float()
             .or_else(|| v.as_integer().map(|i| i as f64))
-            .ok_or_else(|| SceneError(format!("effect.{effect}.{key}: {v} is not a number")))?;
+            .ok_or_else(|| {
+                SceneError(format!(
+                    "effect.{effect}.{key}: {} is not a number",
+                    short(&v.to_string())
+                ))
+            })?;
         if !(lo..=hi).contains(&x) {
             let at = text_hint
                 .and_then(|t| line_of(t, &format!("effect.{effect}"), key))
                 .map_or(String::new(), |l| format!("line {l}: "));
             return Err(SceneError(format!(
-                "{at}effect.{effect}.{key}: {x} is out of range [{lo}, {hi}]"
+                "{at}effect.{effect}.{key}: {} is out of range [{lo}, {hi}]",
+                short_num(x)
             )));
         }
         Ok(x)

@@ -16,11 +16,27 @@
 //! start-up in f32 ([`Precompute`], the default) or f64, or prebuilt on the host and
 //! linked into flash ([`Prebuilt`], no start-up cost, and none of the limit-surface code
 //! in the binary).
+//!
+//! **Silence.** A sensor frame ticks the controller; so must the lack of one, or a dead
+//! link would hold the last command for ever. The loop calls [`Device::idle_tick`] once
+//! for every tick period that passes with no sensor frame, timed on its own clock by a
+//! [`SilenceWatch`] (the firmware on TIM2, the host's device thread on `Instant`). After
+//! `stale_timeout_s` of silence the controller moves its command, at its rate limit, to
+//! the fault target (never below the last required force: see
+//! [`Controller`](crate::controller::Controller)), and the actuator follows. A host that
+//! comes back sees it in [`Stats`]: `idle_ticks`, `command_n`, `fault_active`. Only sensor
+//! frames count: `GetStats` and the like do not feed the controller. A lockstep simulation
+//! turns this off with [`Request::SetPacing`]`(`[`Pacing::Lockstep`]`)`: its frames are
+//! then the device's only clock.
+
+mod silence;
+
+pub use silence::SilenceWatch;
 
 use crate::controller::{Controller, ControllerConfig, Libm, Measurement, Tables, TickMath};
 use crate::protocol::{
-    encode, CommandFrame, CostUnit, DefaultFrameDecoder, Reply, Request, SensorFrame, Stats,
-    WireConfigError, MAX_FRAME_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
+    encode, CommandFrame, CostUnit, DefaultFrameDecoder, Pacing, Reply, Request, SensorFrame,
+    Stats, WireConfigError, MAX_FRAME_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use crate::real::Real;
 use core::marker::PhantomData;
@@ -150,9 +166,11 @@ pub struct Device<M = Libm, S = Precompute<f32>> {
     stack_probe: fn() -> u32,
     shutdown: Option<u8>,
     incompatible: bool,
+    pacing: Pacing,
     decoder: DefaultFrameDecoder,
     frames_sent: u32,
     ticks: u32,
+    idle_ticks: u32,
     worst_tick_cost: u32,
     last_tick_cost: u32,
     startup_cost: u32,
@@ -186,9 +204,11 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             stack_probe: no_stack_probe,
             shutdown: None,
             incompatible: false,
+            pacing: Pacing::RealTime,
             decoder: DefaultFrameDecoder::new(),
             frames_sent: 0,
             ticks: 0,
+            idle_ticks: 0,
             worst_tick_cost: 0,
             last_tick_cost: 0,
             startup_cost: 0,
@@ -232,7 +252,47 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 .controller
                 .as_ref()
                 .map_or(0, Controller::time_rejections),
+            idle_ticks: self.idle_ticks,
+            command_n: self.controller.as_ref().map_or(0.0, Controller::command_n),
+            fault_active: self
+                .controller
+                .as_ref()
+                .is_some_and(Controller::fault_active),
         }
+    }
+
+    /// Sensor frames ticked so far (saturating; what [`Stats::ticks`] reports). A loop
+    /// hands it to [`SilenceWatch::due`] to tell frames from silence.
+    pub fn ticks(&self) -> u32 {
+        self.ticks
+    }
+
+    /// What paces the controller ([`Request::SetPacing`]; [`Pacing::RealTime`] from the
+    /// start).
+    pub fn pacing(&self) -> Pacing {
+        self.pacing
+    }
+
+    /// The tick period of the running configuration [s], `None` before one is accepted.
+    pub fn tick_period_s(&self) -> Option<f64> {
+        self.controller.as_ref().map(|c| c.config().tick_period_s)
+    }
+
+    /// One tick period passed with no sensor frame: ticks the controller with no
+    /// measurement ([`Controller::idle`](crate::controller::Controller::idle)) and drives
+    /// `actuator` with the resulting command, which after the stale timeout heads for the
+    /// fault target. Counted in [`Stats::idle_ticks`]. Returns the command [N], or `None`
+    /// (and does nothing) before a configuration. Cost: a few comparisons.
+    pub fn idle_tick<A: ForceActuator>(&mut self, actuator: &mut A) -> Option<f32> {
+        let ctl = self.controller.as_mut()?;
+        let out = ctl.idle();
+        actuator.set_force_n(out.command_n);
+        self.idle_ticks = self.idle_ticks.saturating_add(1);
+        #[cfg(feature = "defmt")]
+        if out.fault_active {
+            defmt::trace!("idle tick: {=f32} N, fault", out.command_n);
+        }
+        Some(out.command_n)
     }
 
     /// Answers one request, driving `actuator` on sensor frames. Never fails: a bad
@@ -299,10 +359,15 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 Reply::ShuttingDown { code }
             }
             Request::GetStats => Reply::Stats(self.stats::<C>()),
+            Request::SetPacing(pacing) => {
+                self.pacing = pacing;
+                Reply::Paced(pacing)
+            }
             Request::ResetStats => {
                 self.decoder.reset_counters();
                 self.frames_sent = 0;
                 self.ticks = 0;
+                self.idle_ticks = 0;
                 self.worst_tick_cost = 0;
                 self.last_tick_cost = 0;
                 Reply::Stats(self.stats::<C>())

@@ -11,8 +11,8 @@ use serde::Serialize;
 use softgrip::controller::{ControllerConfig, FingerShape, Mode, SkewParams, SlipSignal, Status};
 use softgrip::protocol::{
     cobs_decode_in_place, cobs_encode_in_place, cobs_max_len, encode, fnv1a_32, CommandFrame,
-    CostUnit, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Reply, Request,
-    SensorFrame, Stats, WireConfigError, CRC, CRC_LEN, MAX_FRAME_LEN, MAX_FRAME_LEN_U16,
+    CostUnit, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Pacing, Reply,
+    Request, SensorFrame, Stats, WireConfigError, CRC, CRC_LEN, MAX_FRAME_LEN, MAX_FRAME_LEN_U16,
     MAX_MESSAGE_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use softgrip::ConfigError;
@@ -178,6 +178,9 @@ fn stats_sample() -> Stats {
         stack_peak_bytes: 3_072,
         cost_unit: CostUnit::Cycles,
         stale_frames: Default::default(),
+        idle_ticks: 17,
+        command_n: 6.5,
+        fault_active: true,
     }
 }
 
@@ -205,6 +208,8 @@ fn all_requests() -> Vec<Request> {
         Request::ResetStats,
         Request::Shutdown { code: 0 },
         Request::Shutdown { code: 3 },
+        Request::SetPacing(Pacing::RealTime),
+        Request::SetPacing(Pacing::Lockstep),
     ]
 }
 
@@ -240,6 +245,8 @@ fn all_replies() -> Vec<Reply> {
         Reply::NotConfigured { seq: 5 },
         Reply::ShuttingDown { code: 0 },
         Reply::ShuttingDown { code: 3 },
+        Reply::Paced(Pacing::RealTime),
+        Reply::Paced(Pacing::Lockstep),
     ]
 }
 
@@ -384,6 +391,9 @@ fn largest_replies() -> Vec<Reply> {
             stack_peak_bytes: u32::MAX,
             cost_unit: CostUnit::Cycles,
             stale_frames: Default::default(),
+            idle_ticks: Default::default(),
+            command_n: Default::default(),
+            fault_active: Default::default(),
         }),
         Reply::NotConfigured { seq: u32::MAX },
         Reply::ShuttingDown { code: u8::MAX },
@@ -1010,6 +1020,9 @@ const SCHEMA_HISTORY: &[(u32, u32)] = &[
     // CommandFrame, the actuator's lag and slew in ControllerConfig, stale_frames in
     // Stats, the Incompatible reply to a mismatched Hello.
     (0xf871_8816, 0xb90f_1896),
+    // Protocol 4: the device ticks its controller through silence; Stats reports
+    // idle_ticks, command_n and fault_active; SetPacing/Paced for lockstep simulations.
+    (0x4322_0509, 0x83d5_8a64),
 ];
 
 /// A fixed value of every variant, encoded: it moves whenever the encoding does.
@@ -1060,6 +1073,8 @@ fn golden_digest() -> u32 {
         Request::GetStats,
         Request::ResetStats,
         Request::Shutdown { code: 5 },
+        Request::SetPacing(Pacing::RealTime),
+        Request::SetPacing(Pacing::Lockstep),
     ];
     let statuses = [
         Status::Ok,
@@ -1086,6 +1101,8 @@ fn golden_digest() -> u32 {
             version: 9,
             schema_key: 0x1234_5678,
         },
+        Reply::Paced(Pacing::RealTime),
+        Reply::Paced(Pacing::Lockstep),
     ];
     for (i, status) in statuses.into_iter().enumerate() {
         replies.push(Reply::Command(CommandFrame {
@@ -1128,6 +1145,9 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
         | Request::GetStats
         | Request::ResetStats
         | Request::Shutdown { code: _ } => {}
+        Request::SetPacing(pacing) => match pacing {
+            Pacing::RealTime | Pacing::Lockstep => {}
+        },
         Request::Configure(ControllerConfig {
             mu: _,
             shape,
@@ -1191,6 +1211,9 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             version: _,
             schema_key: _,
         } => {}
+        Reply::Paced(pacing) => match pacing {
+            Pacing::RealTime | Pacing::Lockstep => {}
+        },
         Reply::Configured(Err(WireConfigError {
             param: _,
             message: _,
@@ -1221,6 +1244,9 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             stack_peak_bytes: _,
             cost_unit,
             stale_frames: _,
+            idle_ticks: _,
+            command_n: _,
+            fault_active: _,
         }) => match cost_unit {
             CostUnit::Nanoseconds | CostUnit::Instructions | CostUnit::Cycles => {}
         },
@@ -1420,6 +1446,9 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
             stack_peak_bytes: c[9],
             cost_unit,
             stale_frames: Default::default(),
+            idle_ticks: Default::default(),
+            command_n: Default::default(),
+            fault_active: Default::default(),
         })),
         any::<u32>().prop_map(|seq| Reply::NotConfigured { seq }),
         any::<u8>().prop_map(|code| Reply::ShuttingDown { code }),

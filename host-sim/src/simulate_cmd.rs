@@ -33,9 +33,16 @@ pub struct SimulateArgs {
     controller: String,
     /// The link to the device: `inprocess` (the firmware loop on a thread, over a
     /// pseudo-terminal), `direct` (the same loop and bytes through memory, on this
-    /// thread) or `qemu` (the Cortex-M4F firmware in QEMU, over its USART).
+    /// thread), `qemu` (the Cortex-M4F firmware in QEMU, over its USART) or `serial` (the
+    /// firmware on a board, over the serial port --port).
     #[arg(long, default_value = "inprocess")]
     link: String,
+    /// The serial port for `--link serial` (e.g. /dev/ttyUSB0, or a QEMU pty).
+    #[arg(long)]
+    port: Option<PathBuf>,
+    /// The serial port's speed for `--link serial` [baud].
+    #[arg(long, default_value_t = crate::link::serial::DEFAULT_BAUD)]
+    baud: u32,
     /// The firmware ELF for `--link qemu` (default: what scripts/firmware-build.sh builds).
     #[arg(long)]
     firmware: Option<PathBuf>,
@@ -162,9 +169,26 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 firmware: args.firmware.clone().unwrap_or(firmware),
             }
         }
+        "serial" => {
+            let Some(port) = args.port.clone() else {
+                return Err(CliError::Usage(
+                    "--link serial needs --port PATH (the device's serial port)".into(),
+                ));
+            };
+            if !port.exists() {
+                return Err(CliError::Usage(format!(
+                    "--port: {} does not exist",
+                    port.display()
+                )));
+            }
+            LinkKind::Serial {
+                port,
+                baud: args.baud,
+            }
+        }
         other => {
             return Err(CliError::Usage(format!(
-                "--link: \"{}\" is not a link, expected inprocess, direct or qemu",
+                "--link: \"{}\" is not a link, expected inprocess, direct, qemu or serial",
                 short(other)
             )))
         }
@@ -179,6 +203,15 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
             args.link,
             short(&args.controller),
             short(&args.controller)
+        )));
+    }
+    let device_runs = paths.len() * names.iter().filter(|n| n.starts_with("softgrip")).count();
+    if matches!(link, LinkKind::Serial { .. }) && device_runs > 1 {
+        // A board keeps its controller between runs (a reconfiguration takes over the
+        // running grasp), so a second run would not start from rest as the others do.
+        return Err(CliError::Usage(format!(
+            "--link serial: one softgrip run per invocation (this is {device_runs}): the \
+             device keeps its grasp between runs; reset it between invocations"
         )));
     }
     let mut loaded = Vec::new();
@@ -247,7 +280,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
     let summary_path = args.out.join("summary.json");
     match &link {
-        LinkKind::InProcess | LinkKind::Direct => {
+        LinkKind::InProcess | LinkKind::Direct | LinkKind::Serial { .. } => {
             report::write_summary_json(&summary_path, &all)
                 .map_err(|e| CliError::Failed(format!("--out: {e}")))?
         }

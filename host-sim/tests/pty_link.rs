@@ -68,9 +68,9 @@ fn same_as_direct<M: TickMath<f32> + Send + 'static>(mode: Mode) {
     let Reply::Stats(stats) = link.exchange(&Request::GetStats).unwrap() else {
         panic!()
     };
-    // Hello, configure, the sensor frames, and this request.
-    assert_eq!(stats.frames_received as usize, frames.len() + 3);
-    assert_eq!(stats.frames_sent as usize, frames.len() + 2);
+    // Hello, the pacing, configure, the sensor frames, and this request.
+    assert_eq!(stats.frames_received as usize, frames.len() + 4);
+    assert_eq!(stats.frames_sent as usize, frames.len() + 3);
     assert_eq!(stats.ticks as usize, frames.len());
     assert_eq!(stats.crc_errors + stats.decode_errors + stats.overruns, 0);
     assert_eq!(stats.cost_unit, CostUnit::Nanoseconds);

@@ -208,3 +208,64 @@ fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
     assert!(t["stack_peak_bytes"].as_f64().unwrap() > 1_000.0);
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// `simulate --link serial --port PATH` over the QEMU firmware's UART, opened as any
+/// serial port (as a board's would be): the in-process link's time series bit for bit.
+#[test]
+fn a_scene_over_a_serial_port_equals_the_in_process_link() {
+    let Some((qemu, elf)) = available() else {
+        return;
+    };
+    let (mut child, pty) = host_sim::link::qemu::start(&qemu, &elf).unwrap();
+    let scene = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/lift_hold.toml");
+    let base = std::env::temp_dir().join(format!("softgrip-serial-sim-{}", std::process::id()));
+    let run = |link: &str, extra: &[&str]| {
+        let out = base.join(link);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(["simulate", scene.to_str().unwrap(), "--link", link])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(out.join("timeseries_lift_hold_softgrip.csv")).unwrap()
+    };
+    let serial = run("serial", &["--port", &pty, "--baud", "115200"]);
+    let _ = child.kill();
+    let _ = child.wait();
+    assert_eq!(serial, run("inprocess", &[]));
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A serial port that is missing, or that cannot be opened, is an error naming the flag
+/// and the path.
+#[test]
+fn a_missing_or_unopenable_serial_port_names_the_flag_and_the_path() {
+    let scene = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/lift_hold.toml");
+    let out = std::env::temp_dir().join(format!("softgrip-serial-err-{}", std::process::id()));
+    for (port, what) in [
+        ("/dev/softgrip-no-such-port", "does not exist"),
+        // A file that exists but is no serial port.
+        (env!("CARGO_MANIFEST_DIR"), "cannot open"),
+    ] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(["simulate", scene.to_str().unwrap(), "--link", "serial"])
+            .args(["--port", port, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("--port") && err.contains(port) && err.contains(what),
+            "{err}"
+        );
+    }
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["simulate", scene.to_str().unwrap(), "--link", "serial"])
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--link serial needs --port"));
+    let _ = std::fs::remove_dir_all(&out);
+}

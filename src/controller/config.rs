@@ -104,10 +104,12 @@ pub struct ControllerConfig {
     /// Time between ticks [s]: the rate limits are applied per tick with this step.
     pub tick_period_s: f64,
     /// How long the controller holds its last safe command without a good measurement
-    /// before it moves to `fault_force_n` [s].
+    /// (bad, stale or no frames at all) before it moves to the fault target [s].
     pub stale_timeout_s: f64,
-    /// The force to go to once the input has been bad or stale for `stale_timeout_s` [N],
-    /// within `[N_min, N_max]`.
+    /// The least force to go to once the input has been bad, stale or silent for
+    /// `stale_timeout_s` [N], within `[N_min, N_max]`. The fault target is the greater of
+    /// this and the last required force (capped at `N_max`): a dead link never opens the
+    /// hand, and this force is the floor when nothing was held.
     pub fault_force_n: f64,
     /// Sensor range for each tangential force component and the measured normal force
     /// [N]: a reading beyond it is a sensor fault.

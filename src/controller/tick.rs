@@ -106,8 +106,15 @@ fn max_step_us(tick_period_s: f64) -> u64 {
 /// For a bad measurement (NaN, ±∞, beyond the sensor range: `SensorFault`) or a stale one
 /// (see "Time": `StaleInput`) it holds the last command and reports the last good
 /// `N_req`, `N_slip` and utilisation. Once no good measurement has arrived for
-/// `stale_timeout_s` it moves the command to `fault_force_n`, rate-limited, and sets
-/// `fault_active` until a good measurement comes. The command starts at `N_min`.
+/// `stale_timeout_s` it moves the command, rate-limited, to the fault target and sets
+/// `fault_active` until a good measurement comes. The fault target is
+/// `max(fault_force_n, min(N_req, N_max))` with `N_req` the last good tick's required
+/// force: never less than what the last known load needed, so a dead sensor or link never
+/// opens the hand (`fault_force_n` only ever raises it). The command starts at `N_min`.
+///
+/// Silence is only seen by a loop that ticks without a measurement: [`Controller::idle`],
+/// once per tick period with no frame (the device loop's timer does, see
+/// `softgrip::device`).
 ///
 /// **Time.** Timestamps are compared with wrapping arithmetic: a measurement is newer when
 /// its timestamp is 1 µs to 1 s (or four tick periods, if longer) after the last good one,
@@ -396,16 +403,33 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// input (`StaleInput`): the command holds, and once no good measurement has arrived
     /// for the stale timeout it moves to the fault force. This is how a silent sensor or
     /// link is detected; a loop that only ticks on arriving frames never calls it, and
-    /// then holds its command through silence. Cost: a few comparisons.
+    /// then holds its command through silence. The fault target is never below the last
+    /// required force ([`Controller::fault_target_n`]). Cost: a few comparisons.
     pub fn idle(&mut self) -> TickOutput<T> {
         self.bad_tick(Status::StaleInput)
     }
 
+    /// Whether the input has been bad, stale or silent for the stale timeout, so the
+    /// command is at or heading for [`Controller::fault_target_n`].
+    pub fn fault_active(&self) -> bool {
+        self.bad_ticks >= self.stale_ticks
+    }
+
+    /// Where the command goes once the fault is active [N]: `fault_force_n`, or the last
+    /// good tick's required force `N_req` (capped at `N_max`) when that is greater, so a
+    /// fault never lowers the grip below what the last known load needed.
+    pub fn fault_target_n(&self) -> T {
+        match self.last {
+            Some(o) if o.required_n > self.fault_force => o.required_n.min(self.n_max),
+            _ => self.fault_force,
+        }
+    }
+
     fn bad_tick(&mut self, status: Status) -> TickOutput<T> {
         self.bad_ticks = self.bad_ticks.saturating_add(1);
-        let fault_active = self.bad_ticks >= self.stale_ticks;
+        let fault_active = self.fault_active();
         if fault_active {
-            self.command = self.rate_limited(self.fault_force);
+            self.command = self.rate_limited(self.fault_target_n());
         }
         let last = self.last;
         TickOutput {

@@ -15,7 +15,7 @@ use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
 /// encoding changing (the [`SCHEMA_KEY`] follows the encoding by itself).
-pub const PROTOCOL_VERSION: u16 = 3;
+pub const PROTOCOL_VERSION: u16 = 4;
 
 /// Every message, field and type on the wire, in order, plus the frame format. Its
 /// FNV-1a hash is [`SCHEMA_KEY`].
@@ -32,10 +32,12 @@ pub const SCHEMA: &str = "\
 softgrip-protocol;\
 frame=cobs(postcard(msg)+crc32_iscsi_le(postcard(msg)))+0x00;\
 Request{Hello{version:u16,schema_key:u32},Configure(ControllerConfig),Sensor(SensorFrame),\
-GetStats,ResetStats,Shutdown{code:u8}};\
+GetStats,ResetStats,Shutdown{code:u8},SetPacing(Pacing)};\
+Pacing{RealTime,Lockstep};\
 Reply{Hello{version:u16,schema_key:u32,max_frame_len:u16},\
 Configured(Result<(),WireConfigError>),Command(CommandFrame),Stats(Stats),\
-NotConfigured{seq:u32},ShuttingDown{code:u8},Incompatible{version:u16,schema_key:u32}};\
+NotConfigured{seq:u32},ShuttingDown{code:u8},Incompatible{version:u16,schema_key:u32},\
+Paced(Pacing)};\
 SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment_nm:f32,\
 normal_force_n:f32,slip:SlipSignal};\
 SlipSignal{None,Incipient,Gross};\
@@ -44,7 +46,7 @@ fault_active:bool,tick_cost:u32,mu_estimate:f32,margin:f32};\
 Status{Ok,Saturated,SensorFault,StaleInput};\
 Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
 ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
-cost_unit:CostUnit,stale_frames:u32};\
+cost_unit:CostUnit,stale_frames:u32,idle_ticks:u32,command_n:f32,fault_active:bool};\
 CostUnit{Nanoseconds,Instructions,Cycles};\
 WireConfigError{param:String<32>,message:String<96>};\
 ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
@@ -165,6 +167,31 @@ pub struct Stats {
     /// Sensor frames refused for their timestamp (a repeat, an older frame, an
     /// implausible jump: see the controller's "Time" rule).
     pub stale_frames: u32,
+    /// Tick periods that passed with no sensor frame, each an idle tick of the controller
+    /// (see `softgrip::device`, "Silence").
+    pub idle_ticks: u32,
+    /// The force the actuator was last given \[N\] (0 before a configuration): after a
+    /// silence, where the device has moved the grip on its own.
+    pub command_n: f32,
+    /// Whether the controller has had no good measurement for its stale timeout and is at
+    /// (or moving to) its fault target.
+    pub fault_active: bool,
+}
+
+/// What paces the device's controller (host → device inside [`Request::SetPacing`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Pacing {
+    /// The device keeps time: one tick per sensor frame, and one idle tick per tick period
+    /// of its own timer with no sensor frame, so a dead link moves the grip to its fault
+    /// target after the stale timeout. What a device starts in; what a real grasp needs.
+    #[default]
+    RealTime,
+    /// The host's sensor frames are the device's only clock: it ticks on frames alone and
+    /// never on silence. For lockstep simulations, whose plant runs at its own speed, so
+    /// their results do not depend on how fast the host or an emulator is scheduled. A
+    /// device left in lockstep holds its command through a dead link.
+    Lockstep,
 }
 
 /// A [`ConfigError`] in a form that crosses the wire: the parameter's name and the
@@ -263,6 +290,10 @@ pub enum Request {
         /// The exit code the device should end with.
         code: u8,
     },
+    /// Sets what paces the controller (the device starts in [`Pacing::RealTime`]); the
+    /// device answers [`Reply::Paced`]. Allowed before the handshake's `Hello` like
+    /// `GetStats`.
+    SetPacing(Pacing),
 }
 
 impl Request {
@@ -320,6 +351,8 @@ pub enum Reply {
         /// The device's [`SCHEMA_KEY`].
         schema_key: u32,
     },
+    /// Answers [`Request::SetPacing`] with the pacing now in force.
+    Paced(Pacing),
 }
 
 impl Reply {

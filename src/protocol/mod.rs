@@ -103,6 +103,6 @@ pub use frame::{
     MAX_MESSAGE_LEN,
 };
 pub use message::{
-    fnv1a_32, CommandFrame, CostUnit, Reply, Request, SensorFrame, Stats, WireConfigError,
+    fnv1a_32, CommandFrame, CostUnit, Pacing, Reply, Request, SensorFrame, Stats, WireConfigError,
     MAX_FRAME_LEN_U16, PROTOCOL_VERSION, SCHEMA, SCHEMA_KEY,
 };

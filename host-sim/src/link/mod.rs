@@ -11,10 +11,11 @@
 pub mod direct;
 pub mod pty;
 pub mod qemu;
+pub mod serial;
 
 use softgrip::protocol::{
-    encode, DecoderCounters, DefaultFrameDecoder, Reply, Request, MAX_FRAME_LEN, PROTOCOL_VERSION,
-    SCHEMA_KEY,
+    encode, DecoderCounters, DefaultFrameDecoder, Pacing, Reply, Request, MAX_FRAME_LEN,
+    PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use std::fmt;
 use std::io::{Read, Write};
@@ -74,6 +75,16 @@ pub trait Link: std::fmt::Debug {
 
     /// Writes raw bytes onto the line, outside any exchange (fault injection).
     fn inject(&mut self, bytes: &[u8]) -> Result<(), LinkError>;
+
+    /// Sets what paces the device's controller: [`Pacing::Lockstep`] for a simulation
+    /// whose plant is the clock, [`Pacing::RealTime`] (the device's own default) for a
+    /// device that must act on a silent link.
+    fn set_pacing(&mut self, pacing: Pacing) -> Result<(), LinkError> {
+        match self.exchange(&Request::SetPacing(pacing))? {
+            Reply::Paced(p) if p == pacing => Ok(()),
+            other => Err(LinkError::Unexpected(Box::new(other))),
+        }
+    }
 
     /// Checks the device's protocol version and schema, retrying while the device may
     /// not be listening yet (QEMU notices an opened pty only after up to a second).

@@ -1,11 +1,16 @@
 //! The default link: the firmware loop on a thread of its own, over a pseudo-terminal.
+//!
+//! Two pacings ([`Pacing`]): the simulator's lockstep, where the plant's frames are the
+//! device's only clock, so results do not depend on how the host is scheduled; and real
+//! time, where the device thread also ticks its controller through silence on the wall
+//! clock, as the firmware does on its timer.
 
 use super::{Framed, Link, LinkError};
 use embedded_io_adapters::std::FromStd;
 use serialport::TTYPort;
 use softgrip::controller::TickMath;
-use softgrip::device::{CostClock, Device, NoActuator};
-use softgrip::protocol::{CostUnit, DecoderCounters, Reply, Request};
+use softgrip::device::{CostClock, Device, NoActuator, SilenceWatch};
+use softgrip::protocol::{CostUnit, DecoderCounters, Pacing, Reply, Request};
 use std::io::ErrorKind;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -40,8 +45,17 @@ pub struct PtyLink {
 }
 
 impl PtyLink {
-    /// Opens the pty pair and starts the device thread with the math backend `M`.
+    /// Opens the pty pair and starts the device thread with the math backend `M`, in
+    /// lockstep ([`Pacing::Lockstep`], what `simulate` and `bench` use).
     pub fn spawn<M: TickMath<f32> + Send + 'static>() -> Result<Self, LinkError> {
+        Self::spawn_paced::<M>(Pacing::Lockstep)
+    }
+
+    /// Opens the pty pair, starts the device thread with the math backend `M`, shakes
+    /// hands and sets `pacing` ([`Link::set_pacing`]).
+    pub fn spawn_paced<M: TickMath<f32> + Send + 'static>(
+        pacing: Pacing,
+    ) -> Result<Self, LinkError> {
         let (mut plant, device_port) =
             TTYPort::pair().map_err(|e| LinkError::Io(std::io::Error::other(e)))?;
         plant
@@ -55,18 +69,31 @@ impl PtyLink {
             device: Some(device),
         };
         link.handshake()?;
+        link.set_pacing(pacing)?;
         Ok(link)
     }
 }
 
-fn serve<M: TickMath<f32>>(mut port: TTYPort) {
+/// The device thread: the firmware's loop with the host's clock. In real time it waits
+/// for bytes at most until the next idle deadline, and ticks the controller once per tick
+/// period with no sensor frame ([`Device::idle_ticks_due`]), so a silent plant moves the
+/// device's command to its fault target as the firmware's would; in lockstep (and before a
+/// configuration) the watch is unarmed and it blocks until the plant sends.
+fn serve<M: TickMath<f32>>(port: TTYPort) {
     use serialport::SerialPort;
-    // Block (almost) indefinitely: the plant paces the exchange.
-    let _ = port.set_timeout(Duration::from_secs(3600));
+    let start = Instant::now();
+    // Microseconds since the start, wrapping (every 71 minutes; the watch wraps with it).
+    let now_us = || start.elapsed().as_micros() as u32;
     let mut io = FromStd::new(port);
     let mut device = Device::<M>::new();
-    let mut clock = HostClock(Instant::now());
+    let mut clock = HostClock(start);
+    let mut watch = SilenceWatch::new(1e6);
     loop {
+        // Unarmed, nothing is due: block (almost) indefinitely.
+        let wait_us = watch.remaining(now_us()).unwrap_or(3_600_000_000);
+        let _ = io
+            .inner_mut()
+            .set_timeout(Duration::from_micros(u64::from(wait_us)));
         match device.poll(&mut io, &mut NoActuator, &mut clock) {
             Ok(0) => return,
             Ok(_) => {}
@@ -74,6 +101,7 @@ fn serve<M: TickMath<f32>>(mut port: TTYPort) {
             // The plant closed its end (EIO on Linux): the session is over.
             Err(_) => return,
         }
+        device.idle_ticks_due(&mut watch, now_us(), &mut NoActuator);
     }
 }
 

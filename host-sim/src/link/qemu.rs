@@ -1,10 +1,11 @@
 //! The firmware in QEMU: boots the Cortex-M4F build on the `netduinoplus2` machine with
 //! its USART on a host pseudo-terminal (`-serial pty`) and instructions counted exactly
-//! (`-icount shift=0`), and talks to it over that pty (docs/firmware.md).
+//! (`-icount shift=0`), and talks to it over that pty (docs/firmware.md) with the serial
+//! link a board uses ([`SerialLink`]).
 
-use super::{Framed, Link, LinkError};
-use serialport::TTYPort;
-use softgrip::protocol::{DecoderCounters, Reply, Request};
+use super::serial::{SerialLink, DEFAULT_BAUD};
+use super::{Link, LinkError};
+use softgrip::protocol::{DecoderCounters, Pacing, Reply, Request};
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -24,117 +25,116 @@ pub fn default_paths() -> (PathBuf, PathBuf) {
 #[derive(Debug)]
 pub struct QemuLink {
     child: Child,
-    framed: Option<Framed<TTYPort>>,
+    serial: SerialLink,
 }
 
 fn io(e: impl std::fmt::Display) -> LinkError {
     LinkError::Io(std::io::Error::other(e.to_string()))
 }
 
+/// Starts QEMU on `elf` with its USART on a new pseudo-terminal, and returns the process
+/// and the pty's path (for [`SerialLink`], or `simulate --link serial --port PATH`).
+pub fn start(qemu_dir: &Path, elf: &Path) -> Result<(Child, String), LinkError> {
+    let bin = qemu_dir.join("usr/bin/qemu-system-arm");
+    if !bin.exists() {
+        return Err(io(format!(
+            "{} not found: run scripts/firmware-setup.sh",
+            bin.display()
+        )));
+    }
+    if !elf.exists() {
+        return Err(io(format!(
+            "{} not found: run scripts/firmware-build.sh",
+            elf.display()
+        )));
+    }
+    let libs = format!(
+        "{}:{}",
+        qemu_dir.join("usr/lib/x86_64-linux-gnu").display(),
+        qemu_dir.join("lib/x86_64-linux-gnu").display()
+    );
+    let mut child = Command::new(&bin)
+        .env("LD_LIBRARY_PATH", libs)
+        .args([
+            "-machine",
+            "netduinoplus2",
+            "-cpu",
+            "cortex-m4",
+            "-nographic",
+            "-monitor",
+            "none",
+            "-semihosting-config",
+            "enable=on,target=native",
+            "-icount",
+            "shift=0",
+            "-serial",
+            "pty",
+            "-kernel",
+        ])
+        .arg(elf)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    // QEMU names the pty on stderr (older versions) or stdout.
+    let (tx, rx) = std::sync::mpsc::channel();
+    for stream in [
+        child
+            .stdout
+            .take()
+            .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
+        child
+            .stderr
+            .take()
+            .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        let tx = tx.clone();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stream).lines().map_while(Result::ok) {
+                if let Some(i) = line.find("/dev/pts/") {
+                    let path: String = line[i..]
+                        .chars()
+                        .take_while(|c| !c.is_whitespace() && *c != ')')
+                        .collect();
+                    let _ = tx.send(path);
+                }
+            }
+        });
+    }
+    let path = match rx.recv_timeout(Duration::from_secs(10)) {
+        Ok(p) => p,
+        Err(_) => {
+            let _ = child.kill();
+            return Err(io("QEMU did not report its pseudo-terminal"));
+        }
+    };
+    Ok((child, path))
+}
+
 impl QemuLink {
-    /// Boots `elf` in the QEMU unpacked under `qemu_dir` and shakes hands with it.
+    /// Boots `elf` in the QEMU unpacked under `qemu_dir`, shakes hands with it and sets
+    /// it to lockstep ([`Pacing::Lockstep`]: what `simulate` and the comparisons with the
+    /// host use, since QEMU's virtual time runs at its own pace).
     pub fn boot(qemu_dir: &Path, elf: &Path) -> Result<Self, LinkError> {
-        let bin = qemu_dir.join("usr/bin/qemu-system-arm");
-        if !bin.exists() {
-            return Err(io(format!(
-                "{} not found: run scripts/firmware-setup.sh",
-                bin.display()
-            )));
-        }
-        if !elf.exists() {
-            return Err(io(format!(
-                "{} not found: run scripts/firmware-build.sh",
-                elf.display()
-            )));
-        }
-        let libs = format!(
-            "{}:{}",
-            qemu_dir.join("usr/lib/x86_64-linux-gnu").display(),
-            qemu_dir.join("lib/x86_64-linux-gnu").display()
-        );
-        let mut child = Command::new(&bin)
-            .env("LD_LIBRARY_PATH", libs)
-            .args([
-                "-machine",
-                "netduinoplus2",
-                "-cpu",
-                "cortex-m4",
-                "-nographic",
-                "-monitor",
-                "none",
-                "-semihosting-config",
-                "enable=on,target=native",
-                "-icount",
-                "shift=0",
-                "-serial",
-                "pty",
-                "-kernel",
-            ])
-            .arg(elf)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()?;
-        // QEMU names the pty on stderr (older versions) or stdout.
-        let (tx, rx) = std::sync::mpsc::channel();
-        for stream in [
-            child
-                .stdout
-                .take()
-                .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
-            child
-                .stderr
-                .take()
-                .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
-        ]
-        .into_iter()
-        .flatten()
-        {
-            let tx = tx.clone();
-            std::thread::spawn(move || {
-                for line in BufReader::new(stream).lines().map_while(Result::ok) {
-                    if let Some(i) = line.find("/dev/pts/") {
-                        let path: String = line[i..]
-                            .chars()
-                            .take_while(|c| !c.is_whitespace() && *c != ')')
-                            .collect();
-                        let _ = tx.send(path);
-                    }
-                }
-            });
-        }
-        let path = match rx.recv_timeout(Duration::from_secs(10)) {
-            Ok(p) => p,
-            Err(_) => {
+        Self::boot_paced(qemu_dir, elf, Pacing::Lockstep)
+    }
+
+    /// Boots `elf` as [`QemuLink::boot`] does, paced by `pacing`.
+    pub fn boot_paced(qemu_dir: &Path, elf: &Path, pacing: Pacing) -> Result<Self, LinkError> {
+        let (mut child, path) = start(qemu_dir, elf)?;
+        // QEMU notices an opened pty only after a while: the serial link's handshake
+        // retries.
+        match SerialLink::open(Path::new(&path), DEFAULT_BAUD, pacing) {
+            Ok(serial) => Ok(Self { child, serial }),
+            Err(e) => {
                 let _ = child.kill();
-                return Err(io("QEMU did not report its pseudo-terminal"));
-            }
-        };
-        let port = serialport::new(&path, 115_200)
-            .timeout(Duration::from_millis(200))
-            .open_native()
-            .map_err(io)?;
-        let mut link = Self {
-            child,
-            framed: Some(Framed::new(port, Duration::from_millis(300))),
-        };
-        // QEMU notices the opened pty only after a while: the handshake retries.
-        let mut last = LinkError::Timeout;
-        for _ in 0..20 {
-            match link.handshake() {
-                Ok(()) => {
-                    if let Some(f) = link.framed.as_mut() {
-                        // Retried hellos may still be answered: let them pass.
-                        f.drain(Duration::from_millis(400));
-                        f.set_timeout(Duration::from_secs(30));
-                    }
-                    return Ok(link);
-                }
-                Err(LinkError::Timeout) => last = LinkError::Timeout,
-                Err(e) => return Err(e),
+                let _ = child.wait();
+                Err(e)
             }
         }
-        Err(last)
     }
 
     /// Asks the firmware to stop with `code` and returns QEMU's exit code.
@@ -149,7 +149,7 @@ impl QemuLink {
                 return Err(io(format!("{e}; QEMU's exit status: {status:?}")));
             }
         }
-        self.framed.take();
+        self.serial.close();
         for _ in 0..100 {
             if let Some(status) = self.child.try_wait()? {
                 return Ok(status.code().unwrap_or(-1));
@@ -162,30 +162,22 @@ impl QemuLink {
 
 impl Link for QemuLink {
     fn exchange(&mut self, request: &Request) -> Result<Reply, LinkError> {
-        match self.framed.as_mut() {
-            Some(f) => f.exchange(request),
-            None => Err(LinkError::Timeout),
-        }
+        self.serial.exchange(request)
     }
 
     /// Writes raw bytes onto the line, outside any exchange: for fault injection.
     fn inject(&mut self, bytes: &[u8]) -> Result<(), LinkError> {
-        use std::io::Write;
-        let f = self.framed.as_mut().ok_or(LinkError::Timeout)?;
-        f.port_mut().write_all(bytes)?;
-        Ok(())
+        self.serial.inject(bytes)
     }
 
     fn counters(&self) -> DecoderCounters {
-        self.framed
-            .as_ref()
-            .map_or(DecoderCounters::default(), Framed::counters)
+        self.serial.counters()
     }
 }
 
 impl Drop for QemuLink {
     fn drop(&mut self) {
-        self.framed.take();
+        self.serial.close();
         if self.child.try_wait().ok().flatten().is_none() {
             let _ = self.child.kill();
             let _ = self.child.wait();

@@ -16,6 +16,7 @@
 use crate::link::direct::DirectLink;
 use crate::link::pty::PtyLink;
 use crate::link::qemu::QemuLink;
+use crate::link::serial::SerialLink;
 use crate::link::{Link, LinkError};
 use crate::sim::effects::LinkFate;
 use crate::sim::record::LinkSummary;
@@ -56,6 +57,13 @@ pub enum LinkKind {
     /// The device loop on the calling thread, through an in-memory byte stream (the same
     /// bytes as over the pty).
     Direct,
+    /// The firmware on a board (or any device) behind a serial port.
+    Serial {
+        /// The port's path.
+        port: PathBuf,
+        /// Its speed.
+        baud: u32,
+    },
     /// The firmware in QEMU, over its USART's pseudo-terminal.
     Qemu {
         /// Where QEMU is unpacked.
@@ -114,6 +122,10 @@ impl SoftgripLink {
             LinkKind::InProcess => Box::new(PtyLink::spawn::<Libm>()?),
             LinkKind::Direct => Box::new(DirectLink::<Libm>::new()?),
             LinkKind::Qemu { qemu_dir, firmware } => Box::new(QemuLink::boot(qemu_dir, firmware)?),
+            LinkKind::Serial { port, baud } => Box::new(
+                SerialLink::open(port, *baud, softgrip::protocol::Pacing::Lockstep)
+                    .map_err(|e| LinkError::Io(std::io::Error::other(format!("--port: {e}"))))?,
+            ),
         };
         match link.exchange(&Request::Configure(cfg))? {
             Reply::Configured(Ok(())) => {}

@@ -1,11 +1,21 @@
 //! The Cortex-M4F firmware: the device loop of `softgrip::device` on an STM32F405 (QEMU's
-//! `netduinoplus2`), serving the protocol over USART1, one tick per sensor frame.
+//! `netduinoplus2`), serving the protocol over USART1, one tick per sensor frame and one
+//! idle tick per tick period without one.
 //!
 //! - Start-up: TIM2 is set to count instructions (under `-icount shift=0`), the free stack
 //!   is painted, then the loop waits for a `Configure` request, whose precomputation is
 //!   counted as the start-up cost.
 //! - Each sensor frame: one tick, counted in instructions and returned in the command
 //!   frame (`tick_cost`) and the statistics.
+//! - Silence: the loop never blocks on the USART (it reads only what has arrived), and
+//!   between reads it checks TIM2 against the silence watch: every tick period with no
+//!   sensor frame is one idle tick (`Device::idle_ticks_due`), so after the stale timeout
+//!   the command moves to the fault target on its own. This is TIM2 polled at the loop's
+//!   pace (a few hundred instructions at most between checks, far below the 1 ms tick)
+//!   rather than an interrupt: the controller stays in the main loop, with no state shared
+//!   with an interrupt handler and no critical section around the tick. A `Configure`'s
+//!   precomputation holds the loop for its start-up cost; the missed periods are caught up
+//!   after it.
 //! - `Shutdown`: the firmware exits the emulator through semihosting with the requested
 //!   code. A panic exits with code 101 (none is reachable by design).
 //!
@@ -32,7 +42,7 @@ mod tim2;
 mod usart;
 
 use cortex_m_rt::entry;
-use softgrip::device::{Device, NoActuator};
+use softgrip::device::{Device, NoActuator, SilenceWatch};
 
 /// The tables `host-sim tables --format rust` made (feature `prebuilt-tables`).
 #[cfg(feature = "prebuilt-tables")]
@@ -65,11 +75,20 @@ fn main() -> ! {
         tables: prebuilt::tables(),
     });
     let mut device = device.with_stack_probe(stack::peak_bytes);
+    let mut watch = SilenceWatch::new(tim2::TIMER_HZ);
     let code = loop {
-        match device.poll(&mut serial, &mut NoActuator, &mut clock) {
-            Ok(_) => {}
+        let ready = match embedded_io::ReadReady::read_ready(&mut serial) {
+            Ok(ready) => ready,
             Err(never) => match never {},
+        };
+        if ready {
+            match device.poll(&mut serial, &mut NoActuator, &mut clock) {
+                Ok(_) => {}
+                Err(never) => match never {},
+            }
         }
+        let now = softgrip::device::CostClock::now(&mut clock);
+        device.idle_ticks_due(&mut watch, now, &mut NoActuator);
         if let Some(code) = device.shutdown_requested() {
             break code;
         }

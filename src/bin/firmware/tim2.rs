@@ -25,6 +25,11 @@ fn read(addr: usize) -> u32 {
     unsafe { core::ptr::read_volatile(addr as *const u32) }
 }
 
+/// TIM2's count rate [Hz] under QEMU: 1 GHz, one count per virtual nanosecond, which
+/// with `-icount shift=0` is one retired instruction. The silence watch times the tick
+/// period with it.
+pub const TIMER_HZ: f64 = 1e9;
+
 /// The running counter.
 pub struct InstructionCounter;
 

@@ -1,6 +1,7 @@
 //! USART1 of the STM32F405 from its registers alone (QEMU's model needs no clock set-up),
 //! as an `embedded-io` byte stream. Reads block until a byte arrives, then take what is
-//! already waiting; writes wait for an empty transmit register.
+//! already waiting (`read_ready` says whether one has); writes wait for an empty transmit
+//! register.
 
 #![allow(unsafe_code)]
 
@@ -62,6 +63,12 @@ impl embedded_io::Read for Usart1 {
             n += 1;
         }
         Ok(n)
+    }
+}
+
+impl embedded_io::ReadReady for Usart1 {
+    fn read_ready(&mut self) -> Result<bool, Infallible> {
+        Ok(read(SR) & SR_RXNE != 0)
     }
 }
 

@@ -43,13 +43,9 @@ fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
-            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-                let _ = e.print();
-                return ExitCode::from(2);
-            }
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("error: bad arguments");
-            eprintln!("{first}");
+            // The whole error: what is wrong, the valid values or "did you mean", and the
+            // usage line, as clap renders it (to stderr).
+            let _ = e.print();
             return ExitCode::from(2);
         }
     };

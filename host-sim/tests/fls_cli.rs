@@ -64,7 +64,7 @@ fn table_and_csv_formats() {
 }
 
 #[test]
-fn bad_arguments_exit_2_with_one_line_naming_them() {
+fn bad_arguments_exit_2_with_a_first_line_naming_them() {
     for (args, name) in [
         (vec!["--k", "0.5"], "--k"),
         (vec!["--k", "NaN"], "--k"),
@@ -86,8 +86,12 @@ fn bad_arguments_exit_2_with_one_line_naming_them() {
         let (code, out, err) = run(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(out.is_empty());
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(name), "{args:?}: {err}");
+        // The first line names the argument; a value clap refuses is followed by clap's
+        // valid values, "did you mean" and usage hints.
+        let first = err.lines().next().unwrap_or("");
+        assert!(first.starts_with("error: "), "{args:?}: {err}");
+        assert!(first.contains(name), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
 
@@ -111,4 +115,17 @@ fn hard_values_give_finite_answers() {
         }
         assert!(v["pitch"].as_f64().unwrap().is_finite());
     }
+}
+
+#[test]
+fn clap_errors_are_printed_whole() {
+    // A mistyped value: the valid values and clap's suggestion, not only the first line.
+    let (code, _, err) = run(&["--shape", "rec"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("possible values: rect, disc"), "{err}");
+    assert!(err.contains("a similar value exists: 'rect'"), "{err}");
+    // An unknown flag: the usage line.
+    let (code, _, err) = run(&["--bogus"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("Usage: host-sim fls"), "{err}");
 }

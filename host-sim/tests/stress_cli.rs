@@ -3,7 +3,8 @@
 //! - `fls` and `required-force` at the corners of the domain (the hard cases of
 //!   `tests/stress.rs`): every run gives finite numbers (checked field by field in the JSON,
 //!   where a NaN or an infinity would print as `null`) and, where a reference exists, the
-//!   right ones; or it exits with code 2 and one line naming the argument. `fls_cli.rs` and
+//!   right ones; or it exits with code 2 and a first line naming the argument (clap's
+//!   hints follow a value clap itself refuses). `fls_cli.rs` and
 //!   `required_force_cli.rs` hold the basic cases; these are the ones they do not.
 //! - The scene parser (`Scene::parse`, then everything `simulate` builds from a scene before
 //!   it touches the link: the effect pipeline, the controller configuration, the ground
@@ -47,6 +48,12 @@ fn fls(args: &[&str]) -> Option<serde_json::Value> {
     fls_within(args, 2e-6)
 }
 
+/// A refusal with code 2: a first line `error: ...` (clap's hints may follow it), no panic.
+fn assert_usage_error(err: &str, case: &str) {
+    assert!(err.starts_with("error: "), "{case}: {err}");
+    assert!(!err.contains("panicked"), "{case}: {err}");
+}
+
 /// [`fls`] with `f̃ ≤ 1 + f_excess` (a low `--order` is less accurate).
 fn fls_within(args: &[&str], f_excess: f64) -> Option<serde_json::Value> {
     let mut all = args.to_vec();
@@ -55,7 +62,7 @@ fn fls_within(args: &[&str], f_excess: f64) -> Option<serde_json::Value> {
     let (code, out, err) = run("fls", &all);
     if code == 2 {
         assert!(out.is_empty(), "{case}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{case}: {err}");
+        assert_usage_error(&err, &case);
         return None;
     }
     assert_eq!(code, 0, "{case}: exit {code}: {err}");
@@ -221,7 +228,7 @@ fn fls_at_the_limits_of_the_floats() {
         5e-3,
     )
     .is_none());
-    // Refused with code 2 and one line naming the argument.
+    // Refused with code 2 and a first line naming the argument.
     for (args, name) in [
         (vec!["--k", "inf", "--skew", "-0.1"], "--skew"),
         (vec!["--skew", "0.5", "--alpha", "0"], "--alpha"),
@@ -266,7 +273,7 @@ fn required(args: &[&str]) -> Option<serde_json::Value> {
     let (code, out, err) = run("required-force", &all);
     if code == 2 {
         assert!(out.is_empty(), "{case}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{case}: {err}");
+        assert_usage_error(&err, &case);
         return None;
     }
     assert_eq!(code, 0, "{case}: exit {code}: {err}");
@@ -442,10 +449,8 @@ fn required_force_at_the_corners_of_the_domain() {
     }
 }
 
-/// Bad values: code 2 and one line naming the argument. Where the worst load the derived
-/// sensor range admits would overflow the tick (an extreme `--safety`, `--mu` or
-/// `--length`), the refusal is also one line with code 2, but it names `--ft` (the sensor
-/// range is derived from it), not the argument that caused it: reported as a finding.
+/// Bad values: code 2 and a first line naming the argument (for an extreme `--safety`,
+/// `--mu` or `--length` whose worst load would overflow the tick, that argument).
 #[test]
 fn required_force_refuses_bad_values_with_one_line() {
     let base = [

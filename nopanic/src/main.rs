@@ -13,7 +13,7 @@ use softgrip::controller::{
     Controller, ControllerConfig, Libm, Measurement, Micromath, TickOutput,
 };
 use softgrip::controller::blob::Blob;
-use softgrip::device::{Device, NoActuator, NoClock};
+use softgrip::device::{Device, NoActuator, NoClock, SilenceWatch};
 use softgrip::protocol::{encode, DefaultFrameDecoder, FrameError, Reply, Request, SensorFrame};
 use std::hint::black_box;
 
@@ -86,6 +86,14 @@ fn device_sensor(d: &mut Device<Libm>, f: SensorFrame) -> Reply {
 #[inline(never)]
 fn device_any(d: &mut Device<Libm>, r: Request) -> Reply {
     d.handle(r, &mut NoActuator, &mut NoClock)
+}
+
+/// The silence path: the idle ticks due at a timer reading, each ticking the controller
+/// and driving the actuator (the firmware's loop between received bytes).
+#[cfg_attr(not(feature = "scan"), no_panic)]
+#[inline(never)]
+fn device_idle(d: &mut Device<Libm>, w: &mut SilenceWatch, now: u32) -> u32 {
+    d.idle_ticks_due(w, now, &mut NoActuator)
 }
 
 /// Building a controller from a received configuration (validation and precomputation).
@@ -183,6 +191,8 @@ fn main() {
     };
     let _ = device_sensor(&mut dev, black_box(frame));
     n += device_poll(&mut dev, &bytes);
+    let mut watch = SilenceWatch::new(black_box(1e9));
+    n += device_idle(&mut dev, &mut watch, black_box(5_000_000)) as usize;
     n += usize::from(controller_new(cfg));
     n += usize::from(blob_controller(black_box(&bytes)));
     println!("{sum} {n}");

@@ -9,7 +9,7 @@
 //!   4 000 line points and 2 000 slip markers per run anyway (`report.rs`), so runs of up to
 //!   16 384 ticks plot exactly as before; longer runs miss the peaks and slip ticks that
 //!   fall between kept samples.
-//! - **Slip intervals** (the shading of the force plot) are taken from every tick, so no
+//! - **Slip intervals** (the slip bars of the force plot) are taken from every tick, so no
 //!   episode is missed; at most [`MAX_SLIP_INTERVALS`] are kept, merging the closest ones
 //!   when there would be more (the plot merges those closer than 1/1000 of its time axis
 //!   anyway).

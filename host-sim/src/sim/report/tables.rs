@@ -1,0 +1,251 @@
+//! The fixed-width tables for the terminal and the verdict on a run.
+
+use super::*;
+
+/// The verdict on one run: for a scene that should hold (`expected_slip == false`),
+/// `held` if it had no slip event, else `SLIPPED`; for an overload scene, `overload
+/// (slipped as expected)` if it slipped, else `held (unexpected)`.
+pub fn verdict(run: &RunSummary) -> &'static str {
+    match (run.expected_slip, run.slip_events > 0) {
+        (false, false) => "held",
+        (false, true) => "SLIPPED",
+        (true, true) => "overload (slipped as expected)",
+        (true, false) => "held (unexpected)",
+    }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+pub(super) enum Align {
+    Left,
+    Right,
+}
+
+/// Lays out a fixed-width table: a header, a rule, the rows; columns two spaces apart.
+pub(super) fn render_table(headers: &[&str], align: &[Align], rows: &[Vec<String>]) -> String {
+    let widths: Vec<usize> = headers
+        .iter()
+        .enumerate()
+        .map(|(c, h)| {
+            rows.iter()
+                .map(|r| r[c].chars().count())
+                .chain(std::iter::once(h.chars().count()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: &[&str]| -> String {
+        let mut s = String::new();
+        for (c, cell) in cells.iter().enumerate() {
+            if c > 0 {
+                s.push_str("  ");
+            }
+            let w = widths[c];
+            match align[c] {
+                Align::Left => s.push_str(&format!("{cell:<w$}")),
+                Align::Right => s.push_str(&format!("{cell:>w$}")),
+            }
+        }
+        s.truncate(s.trim_end().len());
+        s.push('\n');
+        s
+    };
+    let mut out = line(headers);
+    let total: usize = widths.iter().sum::<usize>() + 2 * widths.len().saturating_sub(1);
+    out.push_str(&"-".repeat(total));
+    out.push('\n');
+    for r in rows {
+        let cells: Vec<&str> = r.iter().map(String::as_str).collect();
+        out.push_str(&line(&cells));
+    }
+    out
+}
+
+/// A fixed-width text table of the runs, one row each, in input order: scene, controller,
+/// dropped (yes/no), slip events, slip distance [mm], slip rotation [mrad], mean N [N],
+/// peak N [N], max utilisation, expected slip (yes/no) and the [`verdict`].
+pub fn summary_table(runs: &[RunSummary]) -> String {
+    use Align::{Left as L, Right as R};
+    let headers = [
+        "scene",
+        "controller",
+        "dropped",
+        "slip events",
+        "slip distance [mm]",
+        "slip rotation [mrad]",
+        "mean N [N]",
+        "peak N [N]",
+        "max utilisation",
+        "expected slip",
+        "verdict",
+    ];
+    let align = [L, L, L, R, R, R, R, R, R, L, L];
+    let rows: Vec<Vec<String>> = runs
+        .iter()
+        .map(|r| {
+            vec![
+                r.scene.clone(),
+                r.controller.clone(),
+                if r.dropped { "yes" } else { "no" }.to_string(),
+                r.slip_events.to_string(),
+                format!("{:.3}", r.slip_distance_m * 1e3),
+                format!("{:.3}", r.slip_rotation_rad * 1e3),
+                format!("{:.3}", r.mean_normal_force_n),
+                format!("{:.3}", r.peak_normal_force_n),
+                format!("{:.3}", r.max_utilisation),
+                if r.expected_slip { "yes" } else { "no" }.to_string(),
+                verdict(r).to_string(),
+            ]
+        })
+        .collect();
+    render_table(&headers, &align, &rows)
+}
+
+/// The distinct names, in order of first appearance.
+pub(super) fn first_appearance<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for n in names {
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
+/// Whether a controller counts as softgrip (its name starts with `softgrip`) rather than a
+/// baseline.
+pub(super) fn is_softgrip(controller: &str) -> bool {
+    controller.starts_with("softgrip")
+}
+
+pub(super) fn held(r: &RunSummary) -> bool {
+    r.slip_events == 0
+}
+
+/// A comparison of the controllers over all scenes (for `simulate --controller all`).
+///
+/// First a table with one row per controller (in order of first appearance): scenes held
+/// of those not expected to slip (e.g. `5/6`), total slip events, total slip distance
+/// [mm] (both totals over every scene, overloads included), mean of the runs' mean normal
+/// force [N] and the largest peak force [N]. Then one line per scene (in order of first
+/// appearance) naming the controllers that held it and the one(s) with the least mean
+/// force. Wherever a baseline (a controller whose name does not start with `softgrip`)
+/// holds a scene with a mean force no larger than a softgrip controller's, or holds a
+/// scene a softgrip controller slipped in, a line says so explicitly.
+pub fn comparison_table(runs: &[RunSummary]) -> String {
+    use Align::{Left as L, Right as R};
+    let controllers = first_appearance(runs.iter().map(|r| r.controller.as_str()));
+    let scenes = first_appearance(runs.iter().map(|r| r.scene.as_str()));
+
+    let headers = [
+        "controller",
+        "scenes held",
+        "slip events",
+        "slip distance [mm]",
+        "mean of mean N [N]",
+        "max peak N [N]",
+    ];
+    let align = [L, R, R, R, R, R];
+    let rows: Vec<Vec<String>> = controllers
+        .iter()
+        .map(|&c| {
+            let mine: Vec<&RunSummary> = runs.iter().filter(|r| r.controller == c).collect();
+            let eligible = mine.iter().filter(|r| !r.expected_slip).count();
+            let held_n = mine.iter().filter(|r| !r.expected_slip && held(r)).count();
+            let events: u64 = mine.iter().map(|r| r.slip_events).sum();
+            let dist: f64 = mine.iter().map(|r| r.slip_distance_m).sum();
+            let means: Vec<f64> = mine
+                .iter()
+                .map(|r| r.mean_normal_force_n)
+                .filter(|v| v.is_finite())
+                .collect();
+            let mean_of_mean = if means.is_empty() {
+                f64::NAN
+            } else {
+                means.iter().sum::<f64>() / means.len() as f64
+            };
+            let peak = mine
+                .iter()
+                .map(|r| r.peak_normal_force_n)
+                .filter(|v| v.is_finite())
+                .fold(f64::NAN, f64::max);
+            vec![
+                c.to_string(),
+                format!("{held_n}/{eligible}"),
+                events.to_string(),
+                format!("{:.3}", dist * 1e3),
+                format!("{mean_of_mean:.3}"),
+                format!("{peak:.3}"),
+            ]
+        })
+        .collect();
+    let mut out = render_table(&headers, &align, &rows);
+
+    out.push('\n');
+    for &scene in &scenes {
+        let here: Vec<&RunSummary> = runs.iter().filter(|r| r.scene == scene).collect();
+        let holders: Vec<&RunSummary> = here.iter().copied().filter(|r| held(r)).collect();
+        let expected_slip = here.iter().any(|r| r.expected_slip);
+        if expected_slip {
+            if holders.is_empty() {
+                out.push_str(&format!(
+                    "scene {scene} (overload): every controller slipped, as expected\n"
+                ));
+            } else {
+                let names: Vec<String> = holders
+                    .iter()
+                    .map(|r| format!("{} ({:.3} N mean)", r.controller, r.mean_normal_force_n))
+                    .collect();
+                out.push_str(&format!(
+                    "scene {scene} (overload): held by {} — unexpected for an overload\n",
+                    names.join(", ")
+                ));
+            }
+            continue;
+        }
+        if holders.is_empty() {
+            out.push_str(&format!("scene {scene}: no controller held it\n"));
+            continue;
+        }
+        let least = holders
+            .iter()
+            .map(|r| r.mean_normal_force_n)
+            .filter(|v| v.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        let names: Vec<&str> = holders.iter().map(|r| r.controller.as_str()).collect();
+        let best: Vec<&str> = holders
+            .iter()
+            .filter(|r| r.mean_normal_force_n == least)
+            .map(|r| r.controller.as_str())
+            .collect();
+        if best.is_empty() {
+            out.push_str(&format!(
+                "scene {scene}: held by {}; no finite mean force\n",
+                names.join(", ")
+            ));
+        } else {
+            out.push_str(&format!(
+                "scene {scene}: held by {}; least mean force: {} ({least:.3} N)\n",
+                names.join(", "),
+                best.join(", ")
+            ));
+        }
+        for s in here.iter().filter(|r| is_softgrip(&r.controller)) {
+            for b in holders.iter().filter(|r| !is_softgrip(&r.controller)) {
+                if !held(s) {
+                    out.push_str(&format!(
+                        "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} slipped \
+                         ({} events) — the baseline does better here\n",
+                        b.controller, b.mean_normal_force_n, s.controller, s.slip_events
+                    ));
+                } else if b.mean_normal_force_n <= s.mean_normal_force_n {
+                    out.push_str(&format!(
+                        "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} {:.3} N \
+                         — the baseline does as well here\n",
+                        b.controller, b.mean_normal_force_n, s.controller, s.mean_normal_force_n
+                    ));
+                }
+            }
+        }
+    }
+    out
+}

@@ -1,11 +1,13 @@
 //! `host-sim`: the std side of softgrip.
 //!
-//! - [`fls_cmd`]: friction-limit-surface sweeps (`host-sim fls`).
-//! - [`required_force_cmd`]: the slip-prevention rule for one load (`host-sim
-//!   required-force`).
-//! - [`sim`] and [`simulate_cmd`]: the grasp simulator (`host-sim simulate`).
-//! - [`tables_cmd`] and [`fls_plot`]: table export and verification, limit-surface
-//!   plots and parameter sweeps (`host-sim tables`).
+//! - [`cmd`]: the commands `fls` (friction-limit-surface sweeps), `required-force` (the
+//!   slip-prevention rule for one load), `simulate` (the grasp simulator, over [`sim`]) and
+//!   `tables` (table export and verification, limit-surface plots and sweeps), siblings
+//!   that share only [`args`], [`input`] and [`plot`].
+//! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`).
+//! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
+//! - [`sim`]: scenes, effects, ground truth, baselines, runs and their reports.
+//! - [`plot`]: limit-surface plots (`fls --plot`, `tables`).
 //! - [`input`]: bounded reading of every file the user names, and the value shortening
 //!   of error messages.
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
@@ -14,15 +16,13 @@
 #![forbid(unsafe_code)]
 
 pub mod accuracy;
+pub mod args;
 pub mod bench;
-pub mod fls_cmd;
-pub mod fls_plot;
+pub mod cmd;
 pub mod input;
 pub mod link;
-pub mod required_force_cmd;
+pub mod plot;
 pub mod sim;
-pub mod simulate_cmd;
-pub mod tables_cmd;
 
 /// A command-line failure with its exit code.
 #[derive(Debug)]

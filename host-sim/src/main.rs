@@ -6,7 +6,11 @@
 #![forbid(unsafe_code)]
 
 use clap::{Parser, Subcommand};
-use host_sim::{accuracy, bench, fls_cmd, required_force_cmd, simulate_cmd, tables_cmd, CliError};
+use host_sim::cmd::tables as tables_cmd;
+use host_sim::cmd::{
+    fls as fls_cmd, required_force as required_force_cmd, simulate as simulate_cmd,
+};
+use host_sim::{accuracy, bench, CliError};
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.

@@ -1,6 +1,7 @@
 //! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
 //! spreadsheets (`csv`) or for programs (`json`).
 
+use crate::args::ShapeArg;
 use crate::input::{config_error, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -13,15 +14,6 @@ use std::io::Write;
 
 /// Largest `--samples`: the sweep table's fixed capacity less its closing point.
 pub const MAX_SAMPLES: usize = 4096;
-
-/// Patch shape on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ShapeArg {
-    /// Hemicylindrical fingertip: rectangular patch `[-l, l] × [-a, a]`.
-    Rect,
-    /// Hemispherical fingertip: disc of radius `a`.
-    Disc,
-}
 
 /// Output format of `fls`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -234,7 +226,7 @@ pub fn run(args: &FlsArgs) -> Result<(), CliError> {
 }
 
 fn plot(path: &std::path::Path, cfg: FlsConfig) -> Result<(), CliError> {
-    use crate::fls_plot::{ellipse, plot_curves, Curve};
+    use crate::plot::{ellipse, plot_curves, Curve};
     let model = FlsModel::<f64>::new(cfg).map_err(usage)?;
     let table = FlsTable::<f64, 129>::sweep(&model, 128).map_err(usage)?;
     let label = format!(

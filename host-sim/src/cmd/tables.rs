@@ -2,7 +2,7 @@
 //! source, a versioned binary blob, or CSV), verify a blob, plot limit surfaces as the
 //! paper's Figures 9–12 do, and sweep parameter sets in parallel.
 
-use crate::fls_plot::{ellipse, plot_curves, Curve};
+use crate::plot::{ellipse, plot_curves, Curve};
 use crate::sim::scene::{ControllerSettings, Finger};
 use crate::CliError;
 use clap::{Args, Subcommand, ValueEnum};

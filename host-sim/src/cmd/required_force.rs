@@ -2,7 +2,7 @@
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
-use crate::fls_cmd::ShapeArg;
+use crate::args::ShapeArg;
 use crate::input::{config_error, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};

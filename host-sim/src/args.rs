@@ -10,3 +10,13 @@ pub enum ShapeArg {
     /// Hemispherical fingertip: disc of radius `a`.
     Disc,
 }
+
+/// Arithmetic of a command's computation: the sweep (`fls`), the grid and solver
+/// (`required-force`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Precision {
+    /// Double precision (default).
+    F64,
+    /// Single precision, as on the Cortex-M4F (the firmware's tick).
+    F32,
+}

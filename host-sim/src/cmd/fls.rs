@@ -1,7 +1,7 @@
 //! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
 //! spreadsheets (`csv`) or for programs (`json`).
 
-use crate::args::ShapeArg;
+use crate::args::{Precision, ShapeArg};
 use crate::input::{config_error, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -24,15 +24,6 @@ pub enum Format {
     Csv,
     /// One JSON object.
     Json,
-}
-
-/// Arithmetic of the sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Precision {
-    /// Double precision (default).
-    F64,
-    /// Single precision, as on the Cortex-M4F.
-    F32,
 }
 
 /// Arguments of `host-sim fls`.

@@ -2,7 +2,7 @@
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
-use crate::args::ShapeArg;
+use crate::args::{Precision, ShapeArg};
 use crate::input::{config_error, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -29,15 +29,6 @@ pub enum OutFormat {
     Table,
     /// One JSON object.
     Json,
-}
-
-/// Arithmetic of the grid and solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PrecisionArg {
-    /// Double precision (default).
-    F64,
-    /// Single precision, as the firmware's tick.
-    F32,
 }
 
 /// Math backend of the solver.
@@ -100,8 +91,8 @@ pub struct RequiredForceArgs {
     #[arg(long, default_value_t = 20.0)]
     n_max: f64,
     /// Arithmetic of the grid and the solver.
-    #[arg(long, value_enum, default_value_t = PrecisionArg::F64)]
-    precision: PrecisionArg,
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    precision: Precision,
     /// Square root of the tick.
     #[arg(long, value_enum, default_value_t = MathArg::Libm)]
     math: MathArg,
@@ -164,8 +155,8 @@ fn usage(e: ConfigError) -> CliError {
 /// Whether the controller of `cfg` builds in the precision of `args`.
 fn builds(args: &RequiredForceArgs, cfg: ControllerConfig) -> bool {
     match args.precision {
-        PrecisionArg::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
-        PrecisionArg::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
+        Precision::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
+        Precision::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
     }
 }
 
@@ -360,18 +351,18 @@ pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliErro
     // The grid's own checks (its precision, the sensor range), named for the user; the
     // controller is built again below in the precision and math asked for.
     let built = match args.precision {
-        PrecisionArg::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).err(),
-        PrecisionArg::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).err(),
+        Precision::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).err(),
+        Precision::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).err(),
     };
     if let Some(e) = built {
         return Err(explain(args, cfg, e));
     }
     let (ft, mn) = (args.ft.abs(), args.mn.abs());
     let mut r = match (args.precision, args.math) {
-        (PrecisionArg::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),
-        (PrecisionArg::F32, MathArg::Libm) => compute::<f32, Libm>(cfg, ft, mn),
-        (PrecisionArg::F32, MathArg::Micromath) => compute::<f32, Micromath>(cfg, ft, mn),
-        (PrecisionArg::F64, MathArg::Micromath) => Err(CliError::Usage(
+        (Precision::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),
+        (Precision::F32, MathArg::Libm) => compute::<f32, Libm>(cfg, ft, mn),
+        (Precision::F32, MathArg::Micromath) => compute::<f32, Micromath>(cfg, ft, mn),
+        (Precision::F64, MathArg::Micromath) => Err(CliError::Usage(
             "--math: micromath is f32 only (add --precision f32)".into(),
         )),
     }?;

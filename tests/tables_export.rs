@@ -182,3 +182,23 @@ fn wrong_versions_configurations_and_values_are_named() {
         FromTablesError::Config(e) if e.param() == "mu"
     ));
 }
+
+/// `BLOB_MAX_LEN` is what its docs say, the largest blob: the largest grid (table mode,
+/// every capacity at its maximum, with skew) fits, and needs no less than half of it.
+#[test]
+fn the_largest_configuration_fits_blob_max_len() {
+    let cfg = ControllerConfig {
+        mode: Mode::Table,
+        force_nodes: softgrip::controller::MAX_FORCE_NODES as u16,
+        table_samples: softgrip::controller::MAX_TABLE_SAMPLES as u16,
+        aspect_count: softgrip::controller::MAX_ASPECTS as u16,
+        skew: Some(softgrip::controller::SkewParams::PAPER),
+        ..ControllerConfig::default()
+    };
+    let c = Controller::<f32>::new(cfg).unwrap();
+    let mut buf = [0u8; BLOB_MAX_LEN];
+    let len = encode(&cfg, &c.capacity().tables(), &mut buf).unwrap();
+    println!("largest blob: {len} of {BLOB_MAX_LEN} bytes");
+    assert!(len <= BLOB_MAX_LEN && 2 * len > BLOB_MAX_LEN, "{len}");
+    assert!(Blob::parse(&buf[..len]).is_ok());
+}

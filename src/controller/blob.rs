@@ -32,7 +32,9 @@ pub const BLOB_MAGIC: [u8; 4] = *b"SGTB";
 /// The blob format's version.
 pub const BLOB_VERSION: u16 = 2;
 const HEADER_LEN: usize = 10;
-/// The largest blob: header, the largest body, CRC.
+/// A buffer of this many bytes holds any blob: header, body, CRC. The largest grid (table
+/// mode, every capacity at its maximum, with skew) encodes to 2 807 bytes
+/// (`tests/tables_export.rs` checks it fits and needs more than half of this).
 pub const BLOB_MAX_LEN: usize = 3400;
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

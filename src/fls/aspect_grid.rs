@@ -3,7 +3,9 @@
 //! On a hemicylinder the contact half-width `a = c·N^γ` grows with the normal force while the
 //! half-length `l` stays fixed, so the shape of the limit surface changes with the load. The
 //! grid holds the pitch and a sweep table at `A` aspect ratios spaced evenly in `ln(l/a)`; a
-//! tick interpolates in `ln(l/a)` between the two neighbours (and clamps outside the range). For the disc every entry is the same surface.
+//! lookup interpolates in `ln(l/a)` between the two neighbours (and clamps outside the
+//! range). For the disc every entry is the same surface. (The controller does not use this
+//! grid: its start-up builds its own tables, `controller::capacity`.)
 
 use crate::error::{check, ConfigError};
 use crate::fls::{FlsModel, FlsTable};

@@ -1,4 +1,6 @@
-//! The sweep of the centre of rotation over `[0, ∞)`, and the lookup table a tick queries.
+//! The sweep of the centre of rotation over `[0, ∞)`, and the lookup table of one sweep
+//! (`fls` on the host; the controller's start-up samples its surfaces from such sweeps, and
+//! its tick reads only its own tables, `controller::capacity`).
 //!
 //! `d = L · t/(1 − t)` maps `t ∈ [0, 1]` onto `d ∈ [0, ∞]`, with `L` the patch's radius of
 //! gyration in units of `a` (`sqrt((λ² + 1)/3)` for the rectangle, `sqrt(1/2)` for the disc):

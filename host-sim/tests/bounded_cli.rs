@@ -345,3 +345,35 @@ fn a_link_with_only_baselines_is_refused() {
         assert!(err.contains("--link") && err.contains("constant"), "{err}");
     }
 }
+
+/// A file QEMU could not boot is refused before QEMU starts, in one line saying what is
+/// wrong with it (it used to end in "serial link: Broken pipe").
+#[test]
+fn a_bad_firmware_elf_is_named_and_explained() {
+    let text = tmp("not-an-elf.bin");
+    std::fs::write(&text, b"not an elf at all").unwrap();
+    let out = tmp("bad-elf-out");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/lift_hold.toml");
+    let scene = scene.to_str().unwrap();
+    let host_elf = BIN; // an ELF, but for this machine, not the Cortex-M4F
+    for (firmware, why) in [
+        (text.to_str().unwrap(), "is not an ELF file"),
+        (host_elf, "not the 32-bit Arm Cortex-M4F"),
+    ] {
+        let (code, err) = run(&[
+            "simulate",
+            scene,
+            "--link",
+            "qemu",
+            "--firmware",
+            firmware,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 2, "{firmware}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains("--firmware") && err.contains(why), "{err}");
+        assert!(!err.contains("Broken pipe"), "{err}");
+    }
+    let _ = std::fs::remove_file(&text);
+}

@@ -164,9 +164,11 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         "direct" => LinkKind::Direct,
         "qemu" => {
             let (qemu_dir, firmware) = default_paths();
+            let firmware = args.firmware.clone().unwrap_or(firmware);
+            check_firmware(&firmware).map_err(CliError::Usage)?;
             LinkKind::Qemu {
                 qemu_dir: args.qemu.clone().unwrap_or(qemu_dir),
-                firmware: args.firmware.clone().unwrap_or(firmware),
+                firmware,
             }
         }
         "serial" => {
@@ -389,6 +391,43 @@ fn mode_of(controller: &str) -> Option<&'static str> {
         "softgrip-table" => Some("table"),
         _ => None,
     }
+}
+
+/// Refuses, in one line naming `--firmware`, a file QEMU's Cortex-M4F could not boot: not
+/// an ELF, an ELF for another machine or word size, or one without the vector table a
+/// `cortex-m-rt` firmware starts from (QEMU would otherwise start and the link would end
+/// in "Broken pipe").
+pub fn check_firmware(path: &Path) -> Result<(), String> {
+    use object::{Architecture, Object, ObjectSection};
+    let shown = short(&path.display().to_string());
+    let data = crate::input::read_capped(path, "--firmware", crate::input::ELF_CAP_BYTES)
+        .map_err(|e| e.to_string())?;
+    let file = object::File::parse(&*data)
+        .map_err(|e| format!("--firmware: {shown} is not an ELF file ({e})"))?;
+    if file.format() != object::BinaryFormat::Elf {
+        return Err(format!(
+            "--firmware: {shown} is a {:?} file, not an ELF",
+            file.format()
+        ));
+    }
+    if file.architecture() != Architecture::Arm || file.is_64() {
+        return Err(format!(
+            "--firmware: {shown} is an ELF for {:?}{}, not the 32-bit Arm Cortex-M4F \
+             (build it with scripts/firmware-build.sh)",
+            file.architecture(),
+            if file.is_64() { " (64-bit)" } else { "" }
+        ));
+    }
+    if file
+        .section_by_name(".vector_table")
+        .is_none_or(|s| s.size() == 0)
+    {
+        return Err(format!(
+            "--firmware: {shown} has no .vector_table: not a cortex-m-rt firmware \
+             (build it with scripts/firmware-build.sh)"
+        ));
+    }
+    Ok(())
 }
 
 /// The section sizes of an ELF file.

@@ -14,7 +14,6 @@ host_path="$PATH"
 host_rustc="$(command -v rustc)"
 export PATH="/usr/bin:$PATH" RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1
 export CARGO_TARGET_THUMBV7EM_NONE_EABIHF_LINKER="$lld"
-export CARGO_TARGET_THUMBV7EM_NONE_EABIHF_RUSTFLAGS="-C link-arg=-Tlink.x"
 variants=("$@")
 [ ${#variants[@]} -eq 0 ] && variants=(default)
 for v in "${variants[@]}"; do
@@ -40,16 +39,16 @@ for v in "${variants[@]}"; do
     mkdir -p "$out"
     # The defmt variant builds the library only: linking a binary with defmt needs a
     # global logger (a transport such as defmt-rtt), which the emulator setup has none of.
-    what=(--bin firmware)
-    [ "$v" = defmt ] && what=(--lib)
-    (cd "$root" && /usr/bin/cargo build -q --profile firmware -p softgrip "${what[@]}" \
+    what=(-p softgrip-firmware --bin softgrip-firmware)
+    [ "$v" = defmt ] && what=(-p softgrip --lib)
+    (cd "$root" && /usr/bin/cargo build -q --profile firmware "${what[@]}" \
         --target thumbv7em-none-eabihf -Zbuild-std=core --features "$features" \
         --target-dir "$dir" >&2)
     if [ "$v" = defmt ]; then
         cp "$dir/thumbv7em-none-eabihf/firmware/libsoftgrip.rlib" "$out/"
         echo "$out/libsoftgrip.rlib"
     else
-        cp "$dir/thumbv7em-none-eabihf/firmware/firmware" "$out/softgrip-firmware.elf"
+        cp "$dir/thumbv7em-none-eabihf/firmware/softgrip-firmware" "$out/softgrip-firmware.elf"
         echo "$out/softgrip-firmware.elf"
     fi
 done

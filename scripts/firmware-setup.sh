@@ -28,7 +28,7 @@ has_target() {
 }
 
 if ! has_target; then
-    rustup toolchain install "$toolchain" --profile minimal --component clippy \
+    rustup toolchain install "$toolchain" --profile minimal --component clippy,llvm-tools \
         --target "$target" >&2 \
         || rustup target add --toolchain "$toolchain" "$target" >&2 || true
 fi

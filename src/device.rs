@@ -133,12 +133,13 @@ pub struct Prebuilt {
 impl<M: TickMath<f32>> ControllerSource<M> for Prebuilt {
     fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError> {
         if cfg != self.config {
-            return Err(WireConfigError::new(
+            return Err(WireConfigError::text(
                 "tables",
-                &"the prebuilt tables were made for another configuration",
+                "the prebuilt tables were made for another configuration",
             ));
         }
-        Controller::from_tables(cfg, &self.tables).map_err(|e| WireConfigError::new("tables", &e))
+        Controller::from_tables(cfg, &self.tables)
+            .map_err(|e| WireConfigError::from_tables_error(&e))
     }
 }
 

@@ -270,30 +270,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 // The same configuration again: nothing to rebuild, nothing changes.
                 Reply::Configured(Ok(()))
             }
-            Request::Configure(cfg) => {
-                let start = clock.now();
-                let built = self.source.controller(cfg);
-                let cost = clock.now().wrapping_sub(start);
-                match built {
-                    Ok(mut ctl) => {
-                        // A running grasp is handed over, not released.
-                        if let Some(previous) = self.controller.as_ref() {
-                            ctl.take_over_from(previous);
-                        }
-                        actuator.set_force_n(ctl.command_n());
-                        self.controller = Some(ctl);
-                        self.startup_cost = cost;
-                        #[cfg(feature = "defmt")]
-                        defmt::info!("configured: start-up cost {=u32}", cost);
-                        Reply::Configured(Ok(()))
-                    }
-                    Err(e) => {
-                        #[cfg(feature = "defmt")]
-                        defmt::warn!("configuration refused: {=str}", e.param.as_str());
-                        Reply::Configured(Err(e))
-                    }
-                }
-            }
+            Request::Configure(cfg) => self.configure(cfg, actuator, clock),
             Request::Sensor(frame) => self.tick(frame, actuator, clock),
             Request::Shutdown { code } => {
                 self.shutdown = Some(code);
@@ -307,6 +284,40 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 self.worst_tick_cost = 0;
                 self.last_tick_cost = 0;
                 Reply::Stats(self.stats::<C>())
+            }
+        }
+    }
+
+    /// Builds and installs the controller for `cfg` (a new configuration). Kept out of
+    /// line: inlined into [`Device::poll`], its temporaries (a controller or two, about
+    /// 3 KB each) would sit in the loop's stack frame for good, not only while configuring.
+    #[inline(never)]
+    fn configure<A: ForceActuator, C: CostClock>(
+        &mut self,
+        cfg: ControllerConfig,
+        actuator: &mut A,
+        clock: &mut C,
+    ) -> Reply {
+        let start = clock.now();
+        let built = self.source.controller(cfg);
+        let cost = clock.now().wrapping_sub(start);
+        match built {
+            Ok(mut ctl) => {
+                // A running grasp is handed over, not released.
+                if let Some(previous) = self.controller.as_ref() {
+                    ctl.take_over_from(previous);
+                }
+                actuator.set_force_n(ctl.command_n());
+                self.controller = Some(ctl);
+                self.startup_cost = cost;
+                #[cfg(feature = "defmt")]
+                defmt::info!("configured: start-up cost {=u32}", cost);
+                Reply::Configured(Ok(()))
+            }
+            Err(e) => {
+                #[cfg(feature = "defmt")]
+                defmt::warn!("configuration refused: {=str}", e.param.as_str());
+                Reply::Configured(Err(e))
             }
         }
     }

@@ -35,5 +35,9 @@ fn main() {
         }
         println!("cargo:rustc-link-search={}", out.display());
         println!("cargo:rustc-link-arg-bins=-Tlink.x");
+        if std::env::var_os("CARGO_FEATURE_DEFMT").is_some() {
+            // defmt's string table (the defmt crate puts defmt.x on the search path).
+            println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+        }
     }
 }

@@ -8,8 +8,9 @@
 #   software sqrt), fast-math (micromath's sqrt), precompute-f64, prebuilt-tables (the
 #   default finger's table-mode tables, made by host-sim, linked in), sqrt-check (the
 #   FPU square root against libm's over a sweep of inputs, then exit; see
-#   host-sim/tests/qemu_sqrt.rs), defmt (the library with the defmt feature, compiled for
-#   the target only to show it builds; it has no logger).
+#   host-sim/tests/qemu_sqrt.rs), defmt (the core's defmt logging with a sink logger,
+#   to measure its flash cost; DEFMT_LOG sets the level compiled in, defmt's default is
+#   error only).
 #
 # Fallback, only where rustup cannot install the target (firmware-setup.sh then installs
 # Debian's rustc-web and its library source): `core` is built from source with
@@ -58,26 +59,18 @@ for v in "${variants[@]}"; do
             export SOFTGRIP_TABLES_RS="$root/target/firmware/tables/softgrip_tables.rs"
             ;;
         precompute-f64) features="firmware,precompute-f64" ;;
-        defmt) features="defmt" ;;
+        defmt) features="firmware,defmt" ;;
         *) echo "unknown variant $v" >&2; exit 2 ;;
     esac
     # One target dir for every variant, so the dependencies are built once; each
     # variant's result is copied to target/firmware/VARIANT/.
     out="$root/target/firmware/$v"
     mkdir -p "$out"
-    # The defmt variant builds the library only: linking a binary with defmt needs a
-    # global logger (a transport such as defmt-rtt), which the emulator setup has none of.
     what=(-p softgrip-firmware --bin softgrip-firmware)
-    [ "$v" = defmt ] && what=(-p softgrip --lib)
     std=()
     [ "$how" = build-std ] && std=(-Zbuild-std=core)
     (cd "$root" && "${cargo[@]}" build -q --profile firmware "${what[@]}" \
         --target "$target" "${std[@]}" --features "$features" --target-dir "$dir" >&2)
-    if [ "$v" = defmt ]; then
-        cp "$dir/$target/firmware/libsoftgrip.rlib" "$out/"
-        echo "$out/libsoftgrip.rlib"
-    else
-        cp "$dir/$target/firmware/softgrip-firmware" "$out/softgrip-firmware.elf"
-        echo "$out/softgrip-firmware.elf"
-    fi
+    cp "$dir/$target/firmware/softgrip-firmware" "$out/softgrip-firmware.elf"
+    echo "$out/softgrip-firmware.elf"
 done

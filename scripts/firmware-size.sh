@@ -19,7 +19,7 @@ bin="$(rustup run "$toolchain" rustc --print sysroot)/lib/rustlib/x86_64-unknown
 [ -x "$bin/llvm-nm" ] || { echo "no llvm-nm in $bin: run scripts/firmware-setup.sh" >&2; exit 1; }
 variants=("$@")
 if [ ${#variants[@]} -eq 0 ]; then
-    for v in default prebuilt-tables soft-sqrt fast-math precompute-f64 sqrt-check; do
+    for v in default prebuilt-tables soft-sqrt fast-math precompute-f64 defmt sqrt-check; do
         [ -f "$root/target/firmware/$v/softgrip-firmware.elf" ] && variants+=("$v")
     done
 fi

@@ -10,14 +10,18 @@
 //!   code. A panic exits with code 101 (none is reachable by design).
 //!
 //! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
-//! software here; `sqrt-check` builds a firmware that checks that and exits). Variants (cargo features): `soft-sqrt` ticks with the `Libm` backend,
-//! `fast-math` with micromath's square root, `precompute-f64` precomputes in f64. Build
-//! with `scripts/firmware-build.sh`. `prebuilt-tables` links in tables made on the host
-//! instead of precomputing them (only their configuration is then accepted).
+//! software here; `sqrt-check` builds a firmware that checks that and exits). Variants
+//! (cargo features): `soft-sqrt` ticks with the `Libm` backend, `fast-math` with
+//! micromath's square root, `precompute-f64` precomputes in f64. Build with
+//! `scripts/firmware-build.sh`. `prebuilt-tables` links in tables made on the host instead
+//! of precomputing them (only their configuration is then accepted). `defmt` adds the
+//! core's defmt log lines with a sink logger (`defmt_sink`), to measure their cost.
 
 #![no_std]
 #![no_main]
 
+#[cfg(feature = "defmt")]
+mod defmt_sink;
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 mod fpu_sqrt;

@@ -8,7 +8,10 @@ use std::collections::HashMap;
 use proptest::prelude::*;
 use serde::ser::SerializeTuple;
 use serde::Serialize;
-use softgrip::controller::{ControllerConfig, FingerShape, Mode, SkewParams, SlipSignal, Status};
+use softgrip::controller::{
+    ControllerConfig, FingerShape, FromTablesError, Mode, SkewParams, SlipSignal, Status,
+    TableError,
+};
 use softgrip::protocol::{
     cobs_decode_in_place, cobs_encode_in_place, cobs_max_len, encode, fnv1a_32, CommandFrame,
     CostUnit, DecoderCounters, DefaultFrameDecoder, FrameDecoder, FrameError, Pacing, Reply,
@@ -595,14 +598,58 @@ fn wire_config_error_copies_short_errors() {
     };
     let w = WireConfigError::from_config_error(&e);
     assert_eq!(w.param.as_str(), "mu");
-    assert_eq!(w.message.as_str(), e.to_string());
+    // The value is not repeated on the wire: the device formats no float (docs/firmware.md).
+    assert_eq!(
+        w.message.as_str(),
+        "mu: out of range, expected a finite number > 0"
+    );
     assert_eq!(WireConfigError::from(&e), w);
-    assert_eq!(w.to_string(), e.to_string());
+    assert_eq!(w.to_string(), w.message.as_str());
 
     let e = ConfigError::NonFinite("k");
     let w = WireConfigError::from_config_error(&e);
     assert_eq!(w.param.as_str(), "k");
     assert_eq!(w.message.as_str(), "k: must be a finite number");
+}
+
+/// Integers are written by hand on the wire (no `core::fmt` in the firmware), and read
+/// exactly as the errors' `Display` does.
+#[test]
+fn wire_errors_with_counts_read_as_their_display() {
+    for (requested, limit) in [(0, 1), (65, 64), (usize::MAX, 10), (1_000_007, 12)] {
+        let e = ConfigError::Capacity {
+            param: "force_nodes",
+            requested,
+            limit,
+        };
+        let w = WireConfigError::from_config_error(&e);
+        assert_eq!(w.message.as_str(), e.to_string());
+    }
+    let tables = [
+        TableError::Size {
+            what: "arm_m",
+            len: 3,
+            expected: 48,
+        },
+        TableError::Invalid {
+            what: "inv_radius",
+            index: 1056,
+        },
+        TableError::Inconsistent {
+            check: "arms rise",
+            index: 0,
+        },
+        TableError::Mismatch { param: "n_max" },
+    ];
+    for t in tables {
+        let w = WireConfigError::from_tables_error(&FromTablesError::Tables(t));
+        assert_eq!(w.param.as_str(), "tables");
+        assert_eq!(w.message.as_str(), t.to_string());
+    }
+    let e = ConfigError::NonFinite("mu");
+    let w = WireConfigError::from_tables_error(&FromTablesError::Config(e));
+    assert_eq!(w.param.as_str(), "tables");
+    assert_eq!(w.message.as_str(), e.to_string());
 }
 
 #[test]
@@ -617,7 +664,7 @@ fn wire_config_error_truncates_long_errors_at_char_boundaries() {
     };
     let w = WireConfigError::from_config_error(&e);
     assert_eq!(w.param.as_str(), &param[..32]);
-    let full = e.to_string();
+    let full = format!("{param}: out of range, expected {expected}");
     assert!(full.len() > 96);
     assert!(full.starts_with(w.message.as_str()));
     // As long as fits: the next character would not have.

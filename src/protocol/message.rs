@@ -10,7 +10,7 @@ use heapless::String;
 use serde::{Deserialize, Serialize};
 
 use super::frame::MAX_FRAME_LEN;
-use crate::controller::{ControllerConfig, SlipSignal, Status};
+use crate::controller::{ControllerConfig, FromTablesError, SlipSignal, Status, TableError};
 use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
@@ -200,30 +200,123 @@ pub enum Pacing {
 pub struct WireConfigError {
     /// The name of the rejected parameter ([`ConfigError::param`]), at most 32 bytes.
     pub param: String<32>,
-    /// The error's `Display` text, at most 96 bytes.
+    /// What is wrong, at most 96 bytes (see [`WireConfigError::from_config_error`]).
     pub message: String<96>,
 }
 
 impl WireConfigError {
     /// Copies `err`'s parameter name and message, cutting each (at a `char` boundary) to
     /// its capacity when too long. Never fails, never panics.
+    ///
+    /// The message is `err`'s `Display` text, except that an out-of-range value is not
+    /// repeated (the sender has it): "mu: out of range, expected a finite number > 0".
+    /// The device formats no floating-point number and writes integers by hand, so the
+    /// firmware links none of `core::fmt`'s formatting (about 23 KB of flash).
     pub fn from_config_error(err: &ConfigError) -> Self {
-        Self::new(err.param(), err)
+        let mut wire = Self::text(err.param(), "");
+        let mut m = Truncating::new(&mut wire.message);
+        // `Truncating` never reports an error.
+        let _ = match *err {
+            ConfigError::NonFinite(param) => {
+                write_all(&mut m, &[param, ": must be a finite number"])
+            }
+            ConfigError::OutOfRange {
+                param, expected, ..
+            } => write_all(&mut m, &[param, ": out of range, expected ", expected]),
+            ConfigError::Capacity {
+                param,
+                requested,
+                limit,
+            } => write_all(&mut m, &[param, ": "])
+                .and_then(|()| write_decimal(&mut m, requested))
+                .and_then(|()| write_all(&mut m, &[" does not fit the fixed capacity (limit "]))
+                .and_then(|()| write_decimal(&mut m, limit))
+                .and_then(|()| m.write_str(")")),
+        };
+        wire
     }
 
-    /// A parameter name and any message, each cut to its capacity like
+    /// Why [`Controller::from_tables`](crate::controller::Controller::from_tables) refused,
+    /// under the parameter name `tables`: `err`'s `Display` text, written without
+    /// `core::fmt` (see [`WireConfigError::from_config_error`]).
+    pub fn from_tables_error(err: &FromTablesError) -> Self {
+        let table = match err {
+            FromTablesError::Config(e) => {
+                let mut wire = Self::from_config_error(e);
+                wire.param = Self::text("tables", "").param;
+                return wire;
+            }
+            FromTablesError::Tables(t) => *t,
+        };
+        let mut wire = Self::text("tables", "");
+        let mut m = Truncating::new(&mut wire.message);
+        let _ = match table {
+            TableError::Size {
+                what,
+                len,
+                expected,
+            } => write_all(&mut m, &["tables: ", what, " has "])
+                .and_then(|()| write_decimal(&mut m, len))
+                .and_then(|()| m.write_str(" entries, the configuration needs "))
+                .and_then(|()| write_decimal(&mut m, expected)),
+            TableError::Invalid { what, index } => write_all(&mut m, &["tables: ", what, "["])
+                .and_then(|()| write_decimal(&mut m, index))
+                .and_then(|()| m.write_str("] is not a valid value")),
+            TableError::Inconsistent { check, index } => {
+                write_all(&mut m, &["tables: ", check, " fails at index "])
+                    .and_then(|()| write_decimal(&mut m, index))
+            }
+            TableError::Mismatch { param } => {
+                write_all(&mut m, &["tables: they were made for another ", param])
+            }
+        };
+        wire
+    }
+
+    /// A parameter name and a fixed message, each cut to its capacity like
     /// [`WireConfigError::from_config_error`].
-    pub fn new(param: &str, message: &dyn fmt::Display) -> Self {
+    pub fn text(param: &str, message: &str) -> Self {
         let mut p = String::new();
         let mut m = String::new();
         // `Truncating` never reports an error, so neither can these writes.
         let _ = Truncating::new(&mut p).write_str(param);
-        let _ = write!(Truncating::new(&mut m), "{message}");
+        let _ = Truncating::new(&mut m).write_str(message);
         Self {
             param: p,
             message: m,
         }
     }
+
+    /// A parameter name and any message, each cut to its capacity like
+    /// [`WireConfigError::from_config_error`] (through `core::fmt`: host code).
+    pub fn new(param: &str, message: &dyn fmt::Display) -> Self {
+        let mut wire = Self::text(param, "");
+        let _ = write!(Truncating::new(&mut wire.message), "{message}");
+        wire
+    }
+}
+
+fn write_all(out: &mut impl Write, parts: &[&str]) -> fmt::Result {
+    parts.iter().try_for_each(|p| out.write_str(p))
+}
+
+/// `n` in decimal, by hand: `write!(out, "{n}")` would link `core::fmt`'s integer
+/// formatting into the firmware.
+fn write_decimal(out: &mut impl Write, mut n: usize) -> fmt::Result {
+    let mut digits = [0u8; 20];
+    let mut start = digits.len();
+    loop {
+        start -= 1;
+        if let Some(d) = digits.get_mut(start) {
+            *d = b'0' + (n % 10) as u8;
+        }
+        n /= 10;
+        if n == 0 || start == 0 {
+            break;
+        }
+    }
+    let text = digits.get(start..).unwrap_or_default();
+    out.write_str(core::str::from_utf8(text).unwrap_or_default())
 }
 
 impl From<&ConfigError> for WireConfigError {

@@ -20,23 +20,23 @@
 //!   code. A panic exits with code 101 (none is reachable by design).
 //!
 //! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
-//! software here). Variants (cargo features): `soft-sqrt` ticks with the `Libm` backend,
-//! `fast-math` with micromath's square root, `precompute-f64` precomputes in f64. Build
-//! with `scripts/firmware-build.sh`. `prebuilt-tables` links in tables made on the host
-//! instead of precomputing them (only their configuration is then accepted).
+//! software here; `sqrt-check` builds a firmware that checks that and exits). Variants
+//! (cargo features): `soft-sqrt` ticks with the `Libm` backend, `fast-math` with
+//! micromath's square root, `precompute-f64` precomputes in f64. Build with
+//! `scripts/firmware-build.sh`. `prebuilt-tables` links in tables made on the host instead
+//! of precomputing them (only their configuration is then accepted). `defmt` adds the
+//! core's defmt log lines with a sink logger (`defmt_sink`), to measure their cost.
 
 #![no_std]
 #![no_main]
-// `core::intrinsics::sqrtf32` for the FPU square root (see `fpu_sqrt`).
-#![allow(internal_features)]
-#![cfg_attr(
-    not(any(feature = "fast-math", feature = "soft-sqrt")),
-    feature(core_intrinsics)
-)]
 
+#[cfg(feature = "defmt")]
+mod defmt_sink;
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 mod fpu_sqrt;
+#[cfg(feature = "sqrt-check")]
+mod sqrt_check;
 mod stack;
 mod tim2;
 mod usart;
@@ -64,6 +64,8 @@ type Precompute = f32;
 
 #[entry]
 fn main() -> ! {
+    #[cfg(feature = "sqrt-check")]
+    sqrt_check::run_and_exit::<Math>();
     stack::paint();
     let mut clock = tim2::InstructionCounter::start();
     let mut serial = usart::Usart1::init();

@@ -19,9 +19,9 @@
 //! second utilisation and its emergency rise), then the loads a host-side scan found to
 //! need the most Illinois iterations, each after a far load and with a gross slip signal.
 
+use host_sim::cmd::simulate::elf_sections;
 use host_sim::link::qemu::{default_paths, QemuLink};
 use host_sim::link::Link;
-use host_sim::cmd::simulate::elf_sections;
 use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement, Mode, SlipSignal};
 use softgrip::protocol::{Reply, Request, SensorFrame};
 use std::path::{Path, PathBuf};

@@ -46,6 +46,21 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// Every effect a scene may list, in pipeline order (`sim::effects` builds them).
+pub const EFFECT_NAMES: [&str; 11] = [
+    "gravity",
+    "disturbance",
+    "sensor_noise",
+    "sensor_faults",
+    "slip_sensor",
+    "link_latency",
+    "link_faults",
+    "actuator",
+    "creep",
+    "partial_slip",
+    "skewed_pressure",
+];
+
 /// The whole scene.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -344,20 +359,20 @@ impl Scene {
             ));
         }
         for name in &self.effects {
-            if !crate::sim::effects::NAMES.contains(&name.as_str()) {
+            if !EFFECT_NAMES.contains(&name.as_str()) {
                 return Err(bad(
                     "",
                     "effects",
                     format!(
                         "unknown effect \"{}\", expected one of {}",
                         short(name),
-                        crate::sim::effects::NAMES.join(", ")
+                        EFFECT_NAMES.join(", ")
                     ),
                 ));
             }
         }
         for name in self.effect.keys() {
-            if !crate::sim::effects::NAMES.contains(&name.as_str()) {
+            if !EFFECT_NAMES.contains(&name.as_str()) {
                 return Err(bad(
                     &format!("effect.{}", short(name)),
                     "",
@@ -438,40 +453,5 @@ impl Scene {
             }
         }
         Ok(())
-    }
-
-    /// A number from `[effect.NAME]`, or `default` when absent. A present value of the
-    /// wrong type or out of `[lo, hi]` is an error naming the key.
-    pub fn effect_param(
-        &self,
-        text_hint: Option<&str>,
-        effect: &str,
-        key: &str,
-        default: f64,
-        lo: f64,
-        hi: f64,
-    ) -> Result<f64, SceneError> {
-        let Some(v) = self.effect.get(effect).and_then(|t| t.get(key)) else {
-            return Ok(default);
-        };
-        let x = v
-            .as_float()
-            .or_else(|| v.as_integer().map(|i| i as f64))
-            .ok_or_else(|| {
-                SceneError(format!(
-                    "effect.{effect}.{key}: {} is not a number",
-                    short(&v.to_string())
-                ))
-            })?;
-        if !(lo..=hi).contains(&x) {
-            let at = text_hint
-                .and_then(|t| line_of(t, &format!("effect.{effect}"), key))
-                .map_or(String::new(), |l| format!("line {l}: "));
-            return Err(SceneError(format!(
-                "{at}effect.{effect}.{key}: {} is out of range [{lo}, {hi}]",
-                short_num(x)
-            )));
-        }
-        Ok(x)
     }
 }

@@ -3,8 +3,8 @@
 //! compliant transmission), at most `slew_n_per_s`, and within `[0, max_force_n]` (its
 //! stall force).
 
-use super::{check_keys, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 
 /// First-order lag, slew limit and saturation.
 #[derive(Debug)]
@@ -16,17 +16,12 @@ pub struct Actuator {
 
 impl Actuator {
     /// Settings: `time_constant_s` (0.02), `slew_n_per_s` (200), `max_force_n` (15).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "actuator";
-        check_keys(
-            scene,
-            e,
-            &["time_constant_s", "slew_n_per_s", "max_force_n"],
-        )?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["time_constant_s", "slew_n_per_s", "max_force_n"])?;
         Ok(Self {
-            time_constant_s: scene.effect_param(text, e, "time_constant_s", 0.02, 0.0, 1e3)?,
-            slew_n_per_s: scene.effect_param(text, e, "slew_n_per_s", 200.0, 1e-6, 1e9)?,
-            max_force_n: scene.effect_param(text, e, "max_force_n", 15.0, 0.0, 1e9)?,
+            time_constant_s: s.param("time_constant_s", 0.02, 0.0, 1e3)?,
+            slew_n_per_s: s.param("slew_n_per_s", 200.0, 1e-6, 1e9)?,
+            max_force_n: s.param("max_force_n", 15.0, 0.0, 1e9)?,
         })
     }
 }

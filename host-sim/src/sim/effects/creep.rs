@@ -9,8 +9,8 @@
 //! with `a_eq = c·N^γ`. Right after a squeeze the patch is smaller than the controller's
 //! model assumes, so it resists less torsion.
 
-use super::{check_keys, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 
 /// The creeping contact size.
 #[derive(Debug)]
@@ -22,12 +22,11 @@ pub struct Creep {
 
 impl Creep {
     /// Settings: `time_constant_s` (0.3), `instant_fraction` (0.6).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "creep";
-        check_keys(scene, e, &["time_constant_s", "instant_fraction"])?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["time_constant_s", "instant_fraction"])?;
         Ok(Self {
-            time_constant_s: scene.effect_param(text, e, "time_constant_s", 0.3, 1e-6, 1e6)?,
-            instant_fraction: scene.effect_param(text, e, "instant_fraction", 0.6, 0.0, 1.0)?,
+            time_constant_s: s.param("time_constant_s", 0.3, 1e-6, 1e6)?,
+            instant_fraction: s.param("instant_fraction", 0.6, 0.0, 1.0)?,
             slow_m: None,
         })
     }

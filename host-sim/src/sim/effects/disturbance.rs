@@ -3,8 +3,8 @@
 //! sign). A common test load for grasp stability (e.g. the impulsive disturbances of
 //! slip-control experiments cited by the paper's introduction).
 
-use super::{check_keys, rng_for, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
@@ -21,15 +21,14 @@ pub struct Disturbance {
 
 impl Disturbance {
     /// Settings: `rate_hz` (2), `force_n` (1.0), `moment_nm` (0.01), `duration_s` (0.05).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "disturbance";
-        check_keys(scene, e, &["rate_hz", "force_n", "moment_nm", "duration_s"])?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["rate_hz", "force_n", "moment_nm", "duration_s"])?;
         Ok(Self {
-            rate_hz: scene.effect_param(text, e, "rate_hz", 2.0, 0.0, 1e4)?,
-            force_n: scene.effect_param(text, e, "force_n", 1.0, 0.0, 1e6)?,
-            moment_nm: scene.effect_param(text, e, "moment_nm", 0.01, 0.0, 1e6)?,
-            duration_s: scene.effect_param(text, e, "duration_s", 0.05, 1e-6, 1e3)?,
-            rng: rng_for(scene, e),
+            rate_hz: s.param("rate_hz", 2.0, 0.0, 1e4)?,
+            force_n: s.param("force_n", 1.0, 0.0, 1e6)?,
+            moment_nm: s.param("moment_nm", 0.01, 0.0, 1e6)?,
+            duration_s: s.param("duration_s", 0.05, 1e-6, 1e3)?,
+            rng: s.rng(),
             active: Vec::new(),
         })
     }

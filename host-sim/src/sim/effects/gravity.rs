@@ -5,8 +5,8 @@
 //! The weight comes onto the grasp as the object leaves its support: the scene's
 //! `support_fraction` (0 on the table, 1 once lifted) scales both.
 
-use super::{check_keys, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 
 /// Weight and payload torque.
 #[derive(Debug)]
@@ -16,10 +16,10 @@ pub struct Gravity {
 
 impl Gravity {
     /// Setting: `g_m_s2` (default 9.81).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        check_keys(scene, "gravity", &["g_m_s2"])?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["g_m_s2"])?;
         Ok(Self {
-            g_m_s2: scene.effect_param(text, "gravity", "g_m_s2", 9.81, 0.0, 1e3)?,
+            g_m_s2: s.param("g_m_s2", 9.81, 0.0, 1e3)?,
         })
     }
 }

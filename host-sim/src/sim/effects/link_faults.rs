@@ -4,8 +4,8 @@
 //! checks must catch them; the device counts them, and the plant counts what it dropped,
 //! so every frame is accounted for.
 
-use super::{check_keys, rng_for, Effect, LinkFate};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, LinkFate};
+use crate::sim::scene::SceneError;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use softgrip::protocol::{encode, Request, SensorFrame, MAX_FRAME_LEN};
@@ -22,14 +22,13 @@ pub struct LinkFaults {
 impl LinkFaults {
     /// Settings (probabilities per frame): `bit_flip_prob` (0.01), `truncate_prob`
     /// (0.005), `drop_prob` (0.005).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "link_faults";
-        check_keys(scene, e, &["bit_flip_prob", "truncate_prob", "drop_prob"])?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["bit_flip_prob", "truncate_prob", "drop_prob"])?;
         Ok(Self {
-            bit_flip_prob: scene.effect_param(text, e, "bit_flip_prob", 0.01, 0.0, 1.0)?,
-            truncate_prob: scene.effect_param(text, e, "truncate_prob", 0.005, 0.0, 1.0)?,
-            drop_prob: scene.effect_param(text, e, "drop_prob", 0.005, 0.0, 1.0)?,
-            rng: rng_for(scene, e),
+            bit_flip_prob: s.param("bit_flip_prob", 0.01, 0.0, 1.0)?,
+            truncate_prob: s.param("truncate_prob", 0.005, 0.0, 1.0)?,
+            drop_prob: s.param("drop_prob", 0.005, 0.0, 1.0)?,
+            rng: s.rng(),
         })
     }
 }

@@ -2,8 +2,8 @@
 //! was taken (a serial link at a fixed baud rate plus buffering), so the command answers
 //! an old load. Frames keep their order.
 
-use super::{check_keys, Effect, LinkFate};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, LinkFate};
+use crate::sim::scene::SceneError;
 use softgrip::protocol::SensorFrame;
 use std::collections::VecDeque;
 
@@ -16,9 +16,9 @@ pub struct LinkLatency {
 
 impl LinkLatency {
     /// Setting: `delay_ticks` (2).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        check_keys(scene, "link_latency", &["delay_ticks"])?;
-        let d = scene.effect_param(text, "link_latency", "delay_ticks", 2.0, 0.0, 1e5)?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["delay_ticks"])?;
+        let d = s.param("delay_ticks", 2.0, 0.0, 1e5)?;
         Ok(Self {
             delay_ticks: d as usize,
             queue: VecDeque::new(),

@@ -24,30 +24,18 @@ pub mod link_latency;
 pub mod partial_slip;
 pub mod sensor_faults;
 pub mod sensor_noise;
+mod settings;
 pub mod skewed_pressure;
 pub mod slip_sensor;
 
 use crate::sim::scene::{Scene, SceneError};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+pub use settings::EffectSettings;
 use softgrip::controller::SkewParams;
 use softgrip::protocol::SensorFrame;
 use std::time::{Duration, Instant};
 
-/// Every effect a scene may list, in pipeline order.
-pub const NAMES: [&str; 11] = [
-    "gravity",
-    "disturbance",
-    "sensor_noise",
-    "sensor_faults",
-    "slip_sensor",
-    "link_latency",
-    "link_faults",
-    "actuator",
-    "creep",
-    "partial_slip",
-    "skewed_pressure",
-];
+/// Every effect a scene may list, in pipeline order (the scene format names them).
+pub use crate::sim::scene::EFFECT_NAMES as NAMES;
 
 /// The plant's state as the effects see it during one step. Loads are on the whole
 /// object; the two fingertips of the pinch each carry half.
@@ -133,30 +121,6 @@ pub trait Effect: std::fmt::Debug {
     }
 }
 
-/// A random stream of the effect's own.
-pub fn rng_for(scene: &Scene, effect: &str) -> ChaCha8Rng {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for b in effect.bytes() {
-        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-    }
-    ChaCha8Rng::seed_from_u64(scene.seed ^ h)
-}
-
-/// Refuses keys an effect does not know (typos would otherwise be silently ignored).
-pub fn check_keys(scene: &Scene, effect: &str, known: &[&str]) -> Result<(), SceneError> {
-    if let Some(table) = scene.effect.get(effect) {
-        for key in table.keys() {
-            if !known.contains(&key.as_str()) {
-                return Err(SceneError(format!(
-                    "effect.{effect}.{key}: unknown setting, expected one of {}",
-                    known.join(", ")
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
 /// The step pipeline: the listed effects, in [`NAMES`] order, with their step cost.
 #[derive(Debug)]
 pub struct Pipeline {
@@ -175,17 +139,37 @@ impl Pipeline {
                 continue;
             }
             let e: Box<dyn Effect> = match name {
-                "gravity" => Box::new(gravity::Gravity::build(scene, text)?),
-                "disturbance" => Box::new(disturbance::Disturbance::build(scene, text)?),
-                "sensor_noise" => Box::new(sensor_noise::SensorNoise::build(scene, text)?),
-                "sensor_faults" => Box::new(sensor_faults::SensorFaults::build(scene, text)?),
-                "slip_sensor" => Box::new(slip_sensor::SlipSensor::build(scene, text)?),
-                "link_latency" => Box::new(link_latency::LinkLatency::build(scene, text)?),
-                "link_faults" => Box::new(link_faults::LinkFaults::build(scene, text)?),
-                "actuator" => Box::new(actuator::Actuator::build(scene, text)?),
-                "creep" => Box::new(creep::Creep::build(scene, text)?),
-                "partial_slip" => Box::new(partial_slip::PartialSlip::build(scene, text)?),
-                "skewed_pressure" => Box::new(skewed_pressure::SkewedPressure::build(scene, text)?),
+                "gravity" => Box::new(gravity::Gravity::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "disturbance" => Box::new(disturbance::Disturbance::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "sensor_noise" => Box::new(sensor_noise::SensorNoise::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "sensor_faults" => Box::new(sensor_faults::SensorFaults::build(
+                    &EffectSettings::of(scene, name, text),
+                )?),
+                "slip_sensor" => Box::new(slip_sensor::SlipSensor::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "link_latency" => Box::new(link_latency::LinkLatency::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "link_faults" => Box::new(link_faults::LinkFaults::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "actuator" => Box::new(actuator::Actuator::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "creep" => Box::new(creep::Creep::build(&EffectSettings::of(scene, name, text))?),
+                "partial_slip" => Box::new(partial_slip::PartialSlip::build(&EffectSettings::of(
+                    scene, name, text,
+                ))?),
+                "skewed_pressure" => Box::new(skewed_pressure::SkewedPressure::build(
+                    &EffectSettings::of(scene, name, text),
+                )?),
                 _ => continue,
             };
             effects.push(e);

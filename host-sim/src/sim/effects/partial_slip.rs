@@ -5,8 +5,8 @@
 //! micro-displacement a tactile sensor would see before the object moves); the largest
 //! value is a run metric.
 
-use super::{check_keys, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 use softgrip::partial_slip::{deflection_m, Elasticity};
 
 /// The micro-displacement before gross slip.
@@ -18,13 +18,13 @@ pub struct PartialSlip {
 
 impl PartialSlip {
     /// Uses the finger's `young_modulus_pa` and `poisson`; no settings of its own.
-    pub fn build(scene: &Scene, _text: Option<&str>) -> Result<Self, SceneError> {
-        check_keys(scene, "partial_slip", &[])?;
-        let elasticity = Elasticity::new(scene.finger.young_modulus_pa, scene.finger.poisson)
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&[])?;
+        let elasticity = Elasticity::new(s.finger().young_modulus_pa, s.finger().poisson)
             .map_err(|e| SceneError(format!("finger.{e}")))?;
         Ok(Self {
             elasticity,
-            mu: scene.finger.mu,
+            mu: s.finger().mu,
         })
     }
 }

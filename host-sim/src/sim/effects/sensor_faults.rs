@@ -3,8 +3,8 @@
 //! saturation (every channel clipped at the sensor's range, silently, as an overloaded
 //! strain gauge does).
 
-use super::{check_keys, rng_for, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use softgrip::protocol::SensorFrame;
@@ -23,34 +23,15 @@ pub struct SensorFaults {
 impl SensorFaults {
     /// Settings: `dropout_prob` (0.01 per frame), `nan_prob` (0.005), `saturation_n`
     /// (infinite: off), `saturation_nm` (infinite).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "sensor_faults";
-        check_keys(
-            scene,
-            e,
-            &["dropout_prob", "nan_prob", "saturation_n", "saturation_nm"],
-        )?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&["dropout_prob", "nan_prob", "saturation_n", "saturation_nm"])?;
         Ok(Self {
-            dropout_prob: scene.effect_param(text, e, "dropout_prob", 0.01, 0.0, 1.0)?,
-            nan_prob: scene.effect_param(text, e, "nan_prob", 0.005, 0.0, 1.0)?,
-            saturation_n: scene.effect_param(
-                text,
-                e,
-                "saturation_n",
-                f64::INFINITY,
-                0.0,
-                f64::INFINITY,
-            )?,
-            saturation_nm: scene.effect_param(
-                text,
-                e,
-                "saturation_nm",
-                f64::INFINITY,
-                0.0,
-                f64::INFINITY,
-            )?,
+            dropout_prob: s.param("dropout_prob", 0.01, 0.0, 1.0)?,
+            nan_prob: s.param("nan_prob", 0.005, 0.0, 1.0)?,
+            saturation_n: s.param("saturation_n", f64::INFINITY, 0.0, f64::INFINITY)?,
+            saturation_nm: s.param("saturation_nm", f64::INFINITY, 0.0, f64::INFINITY)?,
             last: None,
-            rng: rng_for(scene, e),
+            rng: s.rng(),
         })
     }
 }

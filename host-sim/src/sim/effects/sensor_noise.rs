@@ -2,8 +2,8 @@
 //! force/torque sensor, plus a constant bias on the tangential force and the moment (the
 //! usual error model of strain-gauge F/T sensors).
 
-use super::{check_keys, rng_for, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use softgrip::protocol::SensorFrame;
@@ -22,28 +22,24 @@ pub struct SensorNoise {
 impl SensorNoise {
     /// Settings: `force_sd_n` (0.02), `moment_sd_nm` (2e-4), `normal_sd_n` (0.02),
     /// `bias_force_n` (0), `bias_moment_nm` (0).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
         let e = "sensor_noise";
-        check_keys(
-            scene,
-            e,
-            &[
-                "force_sd_n",
-                "moment_sd_nm",
-                "normal_sd_n",
-                "bias_force_n",
-                "bias_moment_nm",
-            ],
-        )?;
+        s.check_keys(&[
+            "force_sd_n",
+            "moment_sd_nm",
+            "normal_sd_n",
+            "bias_force_n",
+            "bias_moment_nm",
+        ])?;
         let normal =
             |sd: f64| Normal::new(0.0, sd).map_err(|err| SceneError(format!("effect.{e}: {err}")));
         Ok(Self {
-            force: normal(scene.effect_param(text, e, "force_sd_n", 0.02, 0.0, 1e6)?)?,
-            moment: normal(scene.effect_param(text, e, "moment_sd_nm", 2e-4, 0.0, 1e6)?)?,
-            normal: normal(scene.effect_param(text, e, "normal_sd_n", 0.02, 0.0, 1e6)?)?,
-            bias_force_n: scene.effect_param(text, e, "bias_force_n", 0.0, -1e6, 1e6)?,
-            bias_moment_nm: scene.effect_param(text, e, "bias_moment_nm", 0.0, -1e6, 1e6)?,
-            rng: rng_for(scene, e),
+            force: normal(s.param("force_sd_n", 0.02, 0.0, 1e6)?)?,
+            moment: normal(s.param("moment_sd_nm", 2e-4, 0.0, 1e6)?)?,
+            normal: normal(s.param("normal_sd_n", 0.02, 0.0, 1e6)?)?,
+            bias_force_n: s.param("bias_force_n", 0.0, -1e6, 1e6)?,
+            bias_moment_nm: s.param("bias_moment_nm", 0.0, -1e6, 1e6)?,
+            rng: s.rng(),
         })
     }
 }

@@ -25,8 +25,8 @@
 //! It draws from its own random stream (seeded from the scene seed and its name), so
 //! listing it changes no other effect's random numbers.
 
-use super::{check_keys, rng_for, Effect, World};
-use crate::sim::scene::{Scene, SceneError};
+use super::{Effect, EffectSettings, World};
+use crate::sim::scene::SceneError;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use softgrip::protocol::{SensorFrame, SlipSignal};
@@ -51,38 +51,19 @@ pub struct SlipSensor {
 impl SlipSensor {
     /// Settings: `incipient_utilisation` (0.9), `latency_s` (0.005 s), `miss_probability`
     /// (0.05, per episode), `false_alarm_rate_hz` (0.2 Hz).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let e = "slip_sensor";
-        check_keys(
-            scene,
-            e,
-            &[
-                "incipient_utilisation",
-                "latency_s",
-                "miss_probability",
-                "false_alarm_rate_hz",
-            ],
-        )?;
+    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
+        s.check_keys(&[
+            "incipient_utilisation",
+            "latency_s",
+            "miss_probability",
+            "false_alarm_rate_hz",
+        ])?;
         Ok(Self {
-            incipient_utilisation: scene.effect_param(
-                text,
-                e,
-                "incipient_utilisation",
-                0.9,
-                0.0,
-                1.0,
-            )?,
-            latency_s: scene.effect_param(text, e, "latency_s", 0.005, 0.0, 10.0)?,
-            miss_probability: scene.effect_param(text, e, "miss_probability", 0.05, 0.0, 1.0)?,
-            false_alarm_rate_hz: scene.effect_param(
-                text,
-                e,
-                "false_alarm_rate_hz",
-                0.2,
-                0.0,
-                1e4,
-            )?,
-            rng: rng_for(scene, e),
+            incipient_utilisation: s.param("incipient_utilisation", 0.9, 0.0, 1.0)?,
+            latency_s: s.param("latency_s", 0.005, 0.0, 10.0)?,
+            miss_probability: s.param("miss_probability", 0.05, 0.0, 1.0)?,
+            false_alarm_rate_hz: s.param("false_alarm_rate_hz", 0.2, 0.0, 1e4)?,
+            rng: s.rng(),
             missing: false,
             last_true: SlipSignal::None,
             pending: VecDeque::with_capacity(16),

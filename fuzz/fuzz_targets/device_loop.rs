@@ -4,7 +4,10 @@
 //! never-let-go invariant, not just "no panic": after every request the command is finite,
 //! in the configuration's `[N_min, N_max]`, and moved at most `rise·dt` up and `fall·dt`
 //! down from the previous one (clamped into a new configuration's range), except for the
-//! documented emergency rise when a slip signal raised the margin or lowered μ̂.
+//! documented emergency rise when a slip signal raised the margin or lowered μ̂. Silences
+//! (runs of up to 64 idle ticks, `Device::idle_tick`, as the firmware's timer and the host's
+//! device thread drive them) obey the same limits and never take the command below the
+//! lesser of where it was and the fault target (no less than the last required force).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -142,6 +145,26 @@ fuzz_target!(|data: &[u8]| {
                     normal_force_n: 2.0,
                     slip: SlipSignal::None,
                 })
+            }
+            7 if op & 0x80 != 0 => {
+                // A silence: no frame for up to 64 tick periods.
+                let Some(k) = bytes.u8() else { break };
+                let (lo, hi) = (cfg.n_min_n as f32, cfg.n_max_n as f32);
+                let rise = (cfg.rise_rate_n_per_s * cfg.tick_period_s) as f32;
+                let fall = (cfg.fall_rate_n_per_s * cfg.tick_period_s) as f32;
+                let slack = 1e-5 * hi;
+                for _ in 0..=(k % 64) {
+                    let prev = dev.controller().unwrap().command_n();
+                    dev.idle_tick(&mut NoActuator);
+                    let ctl = dev.controller().unwrap();
+                    let now = ctl.command_n();
+                    assert!(now.is_finite() && now >= lo && now <= hi, "idle: {now}");
+                    assert!(now >= prev - fall - slack, "idle fell {prev} -> {now}");
+                    assert!(now <= prev + rise + slack, "idle rose {prev} -> {now}");
+                    let floor = before.min(ctl.fault_target_n()).max(lo);
+                    assert!(now >= floor - slack, "silence took {now} below {floor}");
+                }
+                continue;
             }
             6 => {
                 let Some(i) = bytes.u8() else { break };

@@ -10,7 +10,8 @@
 //! now met (take it off).
 //!
 //! Needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh default
-//! prebuilt-tables`; skipped (and says so) without them unless `SOFTGRIP_REQUIRE_QEMU=1`.
+//! prebuilt-tables`; compiled as ignored without them (`host-sim/build.rs`) unless
+//! `SOFTGRIP_REQUIRE_QEMU=1`.
 //!
 //! The trace (docs/firmware.md, "The worst tick"): the qemu_link test's 300 smooth ticks,
 //! then every load of a grid over `|f_t|`, `m_n` and `N` (inside, below and above the
@@ -323,6 +324,10 @@ fn check_budgets(rows: &[Firmware]) -> Vec<String> {
 }
 
 #[test]
+#[cfg_attr(
+    no_qemu_prebuilt,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default prebuilt-tables"
+)]
 fn the_readme_cost_table_is_the_measured_one_and_the_budgets_hold_or_are_listed() {
     let (qemu, default_elf) = default_paths();
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");

@@ -2,7 +2,8 @@
 //! instructions, and exits with the code it is asked for.
 //!
 //! Needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh`; without them the
-//! test says so and passes, unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it).
+//! tests that need them are compiled as ignored, naming the command (`host-sim/build.rs`),
+//! unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it), which makes them fail instead.
 
 use host_sim::link::qemu::{default_paths, QemuLink};
 use host_sim::link::Link;
@@ -23,6 +24,10 @@ fn available() -> Option<(std::path::PathBuf, std::path::PathBuf)> {
 }
 
 #[test]
+#[cfg_attr(
+    no_qemu,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
+)]
 fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
     let Some((qemu, elf)) = available() else {
         return;
@@ -108,6 +113,10 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
 /// precomputation, table mode) are linked in; configuring costs almost nothing, ticks
 /// equal a host controller with the same tables, and another configuration is refused.
 #[test]
+#[cfg_attr(
+    no_qemu_prebuilt,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default prebuilt-tables"
+)]
 fn the_prebuilt_tables_firmware_needs_no_precomputation() {
     let Some((qemu, _)) = available() else {
         return;
@@ -175,6 +184,10 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
 /// `simulate --link qemu` gives the in-process link's time series bit for bit, and its
 /// summary.json has the `target` object.
 #[test]
+#[cfg_attr(
+    no_qemu,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
+)]
 fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
     if available().is_none() {
         return;
@@ -212,6 +225,10 @@ fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
 /// `simulate --link serial --port PATH` over the QEMU firmware's UART, opened as any
 /// serial port (as a board's would be): the in-process link's time series bit for bit.
 #[test]
+#[cfg_attr(
+    no_qemu,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
+)]
 fn a_scene_over_a_serial_port_equals_the_in_process_link() {
     let Some((qemu, elf)) = available() else {
         return;

@@ -4,7 +4,8 @@
 //! this test computes the same digest with the host's `Libm` backend.
 //!
 //! Needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh sqrt-check`; without
-//! them the test says so and passes, unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets).
+//! them the test is compiled as ignored (`host-sim/build.rs`), unless
+//! `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets).
 
 use host_sim::link::qemu::default_paths;
 use softgrip::controller::{Libm, TickMath};
@@ -35,6 +36,10 @@ fn host_digest() -> (u32, u64) {
 }
 
 #[test]
+#[cfg_attr(
+    no_qemu_sqrt,
+    ignore = "needs QEMU and the sqrt-check firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh sqrt-check"
+)]
 fn the_firmware_square_root_is_bit_identical_to_the_hosts() {
     let (qemu, _) = default_paths();
     let elf = PathBuf::from(env!("CARGO_MANIFEST_DIR"))

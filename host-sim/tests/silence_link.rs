@@ -17,8 +17,8 @@
 //! wall clock.
 //!
 //! The QEMU test needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh`;
-//! without them it says so and passes, unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run`
-//! sets it).
+//! without them it is compiled as ignored (`host-sim/build.rs`), unless
+//! `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it).
 
 use host_sim::link::pty::PtyLink;
 use host_sim::link::qemu::{default_paths, QemuLink};
@@ -250,6 +250,10 @@ fn qemu() -> Option<(std::path::PathBuf, std::path::PathBuf)> {
 }
 
 #[test]
+#[cfg_attr(
+    no_qemu,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
+)]
 fn a_cut_uart_moves_the_firmware_grip_to_its_safe_value_within_the_timeout() {
     let Some((qemu_dir, elf)) = qemu() else {
         return;

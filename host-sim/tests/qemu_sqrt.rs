@@ -7,10 +7,9 @@
 //! them the test is compiled as ignored (`host-sim/build.rs`), unless
 //! `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets).
 
-use host_sim::link::qemu::default_paths;
+use host_sim::link::qemu::{self, default_paths};
 use softgrip::controller::{Libm, TickMath};
 use std::path::PathBuf;
-use std::process::Command;
 
 const CANONICAL_NAN: u32 = 0x7FC0_0000;
 const SPECIALS: [u32; 6] = [0, 0x8000_0000, 0x7F80_0000, 0xFF80_0000, 1, 0x7F7F_FFFF];
@@ -55,32 +54,7 @@ fn the_firmware_square_root_is_bit_identical_to_the_hosts() {
         );
         return;
     }
-    let out = Command::new(&bin)
-        .env(
-            "LD_LIBRARY_PATH",
-            format!(
-                "{}:{}",
-                qemu.join("usr/lib/x86_64-linux-gnu").display(),
-                qemu.join("lib/x86_64-linux-gnu").display()
-            ),
-        )
-        .args([
-            "-machine",
-            "netduinoplus2",
-            "-cpu",
-            "cortex-m4",
-            "-nographic",
-            "-monitor",
-            "none",
-            "-serial",
-            "null",
-            "-semihosting-config",
-            "enable=on,target=native",
-            "-kernel",
-        ])
-        .arg(&elf)
-        .output()
-        .unwrap();
+    let out = qemu::command(&qemu, &elf, "null", false).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     let line = stdout
         .lines()

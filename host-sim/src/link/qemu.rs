@@ -32,6 +32,36 @@ fn io(e: impl std::fmt::Display) -> LinkError {
     LinkError::Io(std::io::Error::other(e.to_string()))
 }
 
+/// The QEMU command that runs `elf` on the emulated STM32F405 (`netduinoplus2`,
+/// Cortex-M4) with semihosting (the firmware's exit code), its USART on `serial` (`pty`,
+/// `null`, ...), and with `count_instructions` QEMU's `-icount shift=0` (one instruction
+/// a nanosecond: TIM2 then counts instructions). `qemu_dir` is where
+/// `scripts/firmware-setup.sh` unpacked QEMU and its libraries.
+pub fn command(qemu_dir: &Path, elf: &Path, serial: &str, count_instructions: bool) -> Command {
+    let libs = format!(
+        "{}:{}",
+        qemu_dir.join("usr/lib/x86_64-linux-gnu").display(),
+        qemu_dir.join("lib/x86_64-linux-gnu").display()
+    );
+    let mut cmd = Command::new(qemu_dir.join("usr/bin/qemu-system-arm"));
+    cmd.env("LD_LIBRARY_PATH", libs).args([
+        "-machine",
+        "netduinoplus2",
+        "-cpu",
+        "cortex-m4",
+        "-nographic",
+        "-monitor",
+        "none",
+        "-semihosting-config",
+        "enable=on,target=native",
+    ]);
+    if count_instructions {
+        cmd.args(["-icount", "shift=0"]);
+    }
+    cmd.args(["-serial", serial, "-kernel"]).arg(elf);
+    cmd
+}
+
 /// Starts QEMU on `elf` with its USART on a new pseudo-terminal, and returns the process
 /// and the pty's path (for [`SerialLink`], or `simulate --link serial --port PATH`).
 pub fn start(qemu_dir: &Path, elf: &Path) -> Result<(Child, String), LinkError> {
@@ -48,30 +78,7 @@ pub fn start(qemu_dir: &Path, elf: &Path) -> Result<(Child, String), LinkError> 
             elf.display()
         )));
     }
-    let libs = format!(
-        "{}:{}",
-        qemu_dir.join("usr/lib/x86_64-linux-gnu").display(),
-        qemu_dir.join("lib/x86_64-linux-gnu").display()
-    );
-    let mut child = Command::new(&bin)
-        .env("LD_LIBRARY_PATH", libs)
-        .args([
-            "-machine",
-            "netduinoplus2",
-            "-cpu",
-            "cortex-m4",
-            "-nographic",
-            "-monitor",
-            "none",
-            "-semihosting-config",
-            "enable=on,target=native",
-            "-icount",
-            "shift=0",
-            "-serial",
-            "pty",
-            "-kernel",
-        ])
-        .arg(elf)
+    let mut child = command(qemu_dir, elf, "pty", true)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

@@ -150,9 +150,16 @@ impl QemuLink {
             Ok(Reply::ShuttingDown { .. }) => {}
             Ok(other) => return Err(LinkError::Unexpected(Box::new(other))),
             Err(e) => {
-                // Say how QEMU ended, if it did: a closed line means it has exited.
+                // A closed line means QEMU has exited. The firmware answers and exits at
+                // once, and QEMU closes the pty as it ends, which can drop the answer
+                // before it is read: an exit with the requested code is the answer.
                 std::thread::sleep(Duration::from_millis(200));
                 let status = self.child.try_wait().ok().flatten();
+                if let Some(exit) = status.and_then(|s| s.code()) {
+                    if exit == i32::from(code) {
+                        return Ok(exit);
+                    }
+                }
                 return Err(io(format!("{e}; QEMU's exit status: {status:?}")));
             }
         }

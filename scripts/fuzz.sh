@@ -10,9 +10,15 @@
 # one core (libFuzzer's default), so the times add up. The corpus grows in fuzz/corpus/
 # (ignored by git) and is reused by the next run; findings land in fuzz/artifacts/TARGET/.
 # Exit status 1 when any target has a finding, 0 otherwise.
+#
+# FUZZ_SANITIZER chooses cargo-fuzz's sanitizer: `none` (the default) or `address`. The
+# targets call safe Rust only (the core's one `unsafe`, the VSQRT instruction, is built for
+# ARM alone), so AddressSanitizer finds nothing Rust's own checks would miss; without it
+# the targets run about twice as fast (`config`: 365 against 186 executions per second).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-300}"
+sanitizer="${FUZZ_SANITIZER:-none}"
 shift || true
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(frame_decoder config device device_loop scene)
@@ -40,7 +46,7 @@ for t in "${targets[@]}"; do
     before="$(find "artifacts/$t" -type f | wc -l)"
     log="$(mktemp)"
     set +e
-    cargo +nightly fuzz run -O "$t" "corpus/$t" "$(seeds_of "$t")" -- \
+    cargo +nightly fuzz run -O --sanitizer "$sanitizer" "$t" "corpus/$t" "$(seeds_of "$t")" -- \
         -max_total_time="$seconds" -print_final_stats=1 \
         -artifact_prefix="artifacts/$t/" >"$log" 2>&1
     rc=$?

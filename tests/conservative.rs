@@ -224,3 +224,37 @@ fn a_scan_across_the_aspect_grid_never_under_asks() {
         }
     }
 }
+
+/// Degenerate aspects: a finger far shorter than its contact is wide (`l/a` from about 1e-19
+/// down to 1e-28). The never-let-go issue found ellipse mode reporting a utilisation of 1e6,
+/// with status ok, at `l/a` below 1e-21. Here, in both modes and precisions, the required
+/// force holds the load with its margin (utilisation there at most `1/s`), is never below the
+/// exact surface's, and a tick that can reach it reports the utilisation the load really has.
+#[test]
+fn degenerate_aspects_hold_the_load_at_the_required_force() {
+    for l_m in [1e-21, 1e-22, 1e-25, 1e-30] {
+        for mode in [Mode::Ellipse, Mode::Table] {
+            let cfg = ControllerConfig {
+                n_max_n: 1e3,
+                ..config(FingerShape::Rect, 2.0, 0.5, l_m, false, mode)
+            };
+            let c64 = Controller::<f64>::new(cfg).unwrap();
+            let c32 = Controller::<f32>::new(cfg).unwrap();
+            let s = cfg.safety;
+            for (f, m) in [(1.0, 0.004), (0.0, 0.004), (1.0, 0.0), (0.2, 0.02)] {
+                check(&cfg, &c64, &c32, f, m);
+                let n = c64.required_force(f, m, s).unwrap().force_n;
+                let u = c64.utilisation(f, m, n).unwrap();
+                assert!(
+                    u <= 1.0 / s + 1e-9,
+                    "l = {l_m:e} m, {mode:?}, load ({f}, {m}): utilisation {u} at N_req {n}"
+                );
+                let u32 = c32.utilisation(f as f32, m as f32, n as f32).unwrap();
+                assert!(
+                    f64::from(u32) <= (1.0 / s) * (1.0 + 1e-4),
+                    "{l_m:e} {mode:?} f32 {u32}"
+                );
+            }
+        }
+    }
+}

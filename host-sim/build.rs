@@ -19,10 +19,12 @@ fn main() {
         root.join("target/firmware/default"),
         root.join("target/firmware/prebuilt-tables"),
         root.join("target/firmware/sqrt-check"),
+        root.join("target/firmware/board"),
         qemu.clone(),
         elf("default"),
         elf("prebuilt-tables"),
         elf("sqrt-check"),
+        elf("board"),
     ] {
         println!("cargo::rerun-if-changed={}", path.display());
     }
@@ -35,6 +37,7 @@ fn main() {
             have("default") && have("prebuilt-tables"),
         ),
         ("no_qemu_sqrt", have("sqrt-check")),
+        ("no_qemu_board", have("board")),
     ] {
         println!("cargo::rustc-check-cfg=cfg({cfg})");
         if !ok {

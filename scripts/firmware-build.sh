@@ -10,7 +10,8 @@
 #   FPU square root against libm's over a sweep of inputs, then exit; see
 #   host-sim/tests/qemu_sqrt.rs), defmt (the core's defmt logging with a sink logger,
 #   to measure its flash cost; DEFMT_LOG sets the level compiled in, defmt's default is
-#   error only).
+#   error only), board (a real STM32F405/F407: clocks, USART1 pins and baud rate set at
+#   start-up, TIM2 at the 16 MHz reset clock, reset instead of the emulator's exit).
 #
 # Fallback, only where rustup cannot install the target (firmware-setup.sh then installs
 # Debian's rustc-web and its library source): `core` is built from source with
@@ -59,6 +60,7 @@ for v in "${variants[@]}"; do
             export SOFTGRIP_TABLES_RS="$root/target/firmware/tables/softgrip_tables.rs"
             ;;
         precompute-f64) features="firmware,precompute-f64" ;;
+        board) features="firmware,board" ;;
         defmt) features="firmware,defmt" ;;
         *) echo "unknown variant $v" >&2; exit 2 ;;
     esac

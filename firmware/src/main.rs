@@ -18,6 +18,9 @@
 //!   after it.
 //! - `Shutdown`: the firmware exits the emulator through semihosting with the requested
 //!   code. A panic exits with code 101 (none is reachable by design).
+//! - On a board (feature `board`, `scripts/firmware-build.sh board`): the clocks, pins and
+//!   baud rate are set first (`board`), TIM2 counts core cycles at the reset clock, and
+//!   `Shutdown` or a panic resets the chip instead of calling the emulator.
 //!
 //! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
 //! software here; `sqrt-check` builds a firmware that checks that and exits). Variants
@@ -30,8 +33,11 @@
 #![no_std]
 #![no_main]
 
+#[cfg(feature = "board")]
+mod board;
 #[cfg(feature = "defmt")]
 mod defmt_sink;
+#[cfg(not(feature = "board"))]
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 mod fpu_sqrt;
@@ -67,6 +73,8 @@ fn main() -> ! {
     #[cfg(feature = "sqrt-check")]
     sqrt_check::run_and_exit::<Math>();
     stack::paint();
+    #[cfg(feature = "board")]
+    board::init();
     let mut clock = tim2::InstructionCounter::start();
     let mut serial = usart::Usart1::init();
     #[cfg(not(feature = "prebuilt-tables"))]
@@ -96,10 +104,19 @@ fn main() -> ! {
         }
     };
     usart::Usart1::drain();
+    #[cfg(feature = "board")]
+    {
+        let _ = code;
+        board::reset()
+    }
+    #[cfg(not(feature = "board"))]
     exit::exit(code)
 }
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
+    #[cfg(feature = "board")]
+    board::reset();
+    #[cfg(not(feature = "board"))]
     exit::exit(101)
 }

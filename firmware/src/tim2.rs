@@ -1,7 +1,7 @@
 //! TIM2 as an instruction counter: under QEMU's `-icount shift=0` one instruction is one
 //! virtual nanosecond and TIM2 on `netduinoplus2` counts at 1 GHz, so its 32-bit count is
-//! the number of retired instructions (docs/firmware.md). On hardware it would count timer
-//! ticks instead.
+//! the number of retired instructions (docs/firmware.md). On a board (feature `board`) it
+//! counts at the core clock after reset, 16 MHz, so its count is core cycles.
 
 #![allow(unsafe_code)]
 
@@ -28,7 +28,18 @@ fn read(addr: usize) -> u32 {
 /// TIM2's count rate [Hz] under QEMU: 1 GHz, one count per virtual nanosecond, which
 /// with `-icount shift=0` is one retired instruction. The silence watch times the tick
 /// period with it.
+#[cfg(not(feature = "board"))]
 pub const TIMER_HZ: f64 = 1e9;
+/// TIM2's count rate [Hz] on a board: the core clock after reset (APB1 undivided, so the
+/// timer clock is the core clock), one count per core cycle.
+#[cfg(feature = "board")]
+pub const TIMER_HZ: f64 = crate::board::SYSCLK_HZ as f64;
+
+/// What one count of TIM2 is.
+#[cfg(not(feature = "board"))]
+const COUNT_UNIT: CostUnit = CostUnit::Instructions;
+#[cfg(feature = "board")]
+const COUNT_UNIT: CostUnit = CostUnit::Cycles;
 
 /// The running counter.
 pub struct InstructionCounter;
@@ -45,7 +56,7 @@ impl InstructionCounter {
 }
 
 impl CostClock for InstructionCounter {
-    const UNIT: CostUnit = CostUnit::Instructions;
+    const UNIT: CostUnit = COUNT_UNIT;
     fn now(&mut self) -> u32 {
         read(CNT)
     }

@@ -1,4 +1,5 @@
-//! USART1 of the STM32F405 from its registers alone (QEMU's model needs no clock set-up),
+//! USART1 of the STM32F405 from its registers alone (QEMU's model needs no clock set-up; a
+//! board's clock, pins and baud rate are `board::init`'s),
 //! as an `embedded-io` byte stream. Reads block until a byte arrives, then take what is
 //! already waiting (`read_ready` says whether one has); writes wait for an empty transmit
 //! register.

@@ -184,7 +184,7 @@ pub fn disc_pa(profile: &KProfile<f64>, n: f64, a: f64, peak: (f64, f64), x: f64
 /// Distance from the point `(px, py)` inside the unit circle to the circle along the unit
 /// direction `(ex, ey)`, evaluated without cancellation.
 #[inline]
-pub fn ray_to_circle<T: Real>(px: T, py: T, ex: T, ey: T) -> T {
+pub(crate) fn ray_to_circle<T: Real>(px: T, py: T, ex: T, ey: T) -> T {
     let b = px * ex + py * ey;
     let r2 = px * px + py * py;
     let inside = ((T::one() - r2.libm_sqrt()) * (T::one() + r2.libm_sqrt())).max(T::zero());

@@ -67,14 +67,14 @@ struct Node<T> {
 
 /// A tanh-sinh rule on `[-1, 1]`, mapped onto any `[lo, hi]` by [`TanhSinh::integrate`].
 #[derive(Debug, Clone)]
-pub struct TanhSinh<T> {
+pub(crate) struct TanhSinh<T> {
     nodes: [Node<T>; MAX_NODES_PER_SIDE + 1],
     len: usize,
 }
 
 /// A point handed to the integrand: its position and its distances to both interval ends.
 #[derive(Debug, Clone, Copy)]
-pub struct QuadPoint<T> {
+pub(crate) struct QuadPoint<T> {
     /// Position in `[lo, hi]`.
     pub x: T,
     /// `x − lo`, accurate even when tiny.
@@ -109,11 +109,6 @@ impl<T: Real> TanhSinh<T> {
             };
         }
         Self { nodes, len: n + 1 }
-    }
-
-    /// Number of integrand evaluations per interval, `2n + 1`.
-    pub fn evaluations_per_interval(&self) -> usize {
-        2 * self.len - 1
     }
 
     /// `∫_lo^hi f` for a vector-valued integrand of `D` components. Returns zeros for an

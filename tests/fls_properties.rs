@@ -3,7 +3,7 @@
 //! does not matter, and the surface responds to `k` and the aspect the way the physics says.
 
 use proptest::prelude::*;
-use softgrip::fls::ellipse::ellipse_radius;
+use softgrip::fls::ellipse_radius;
 use softgrip::fls::{EllipseFit, RadialGap};
 use softgrip::{FlsConfig, FlsModel, FlsPoint, FlsTable, QuadratureOrder, Shape};
 

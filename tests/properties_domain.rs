@@ -26,7 +26,7 @@ use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Libm, Measurement, Micromath, Mode, TickMath,
     MAX_ILLINOIS_ITERATIONS, UTILISATION_MAX,
 };
-use softgrip::fls::ellipse::ellipse_radius;
+use softgrip::fls::ellipse_radius;
 use softgrip::fls::RadialGap;
 use softgrip::skew::SkewLaw;
 use softgrip::{FlsTable, Real, Shape};

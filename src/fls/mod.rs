@@ -5,10 +5,13 @@
 //! - [`FlsModel`] evaluates one point of the surface, by tanh-sinh quadrature split at every
 //!   singular point of the integrand (see [`rect`](self) and [`disc`](self) for the closed
 //!   forms that reduce the symmetric cases to 1-D integrals).
-//! - [`sweep`] maps `d ∈ [0, ∞)` onto `t ∈ [0, 1]` and stores a sweep in a fixed-capacity
-//!   [`FlsTable`] that a control tick can query.
-//! - [`ellipse`] gives the pitch (Eq. 22), the least-squares ellipse and the gap to Eq. 10.
-//! - [`aspect_grid`] precomputes pitches and tables over a range of aspect ratios `l/a`.
+//! - [`SweepMap`] maps `d ∈ [0, ∞)` onto `t ∈ [0, 1]`, and a sweep is stored in a
+//!   fixed-capacity [`FlsTable`] (module `sweep`).
+//! - [`EllipseFit`] gives the pitch (Eq. 22), the least-squares ellipse and the gap to
+//!   Eq. 10 ([`RadialGap`]); [`InscribedEllipse`] the one inside the exact surfaces (module
+//!   `ellipse`).
+//! - [`AspectGrid`] precomputes pitches and tables over a range of aspect ratios `l/a`
+//!   (module `aspect_grid`).
 //!
 //! Accuracy at [`QuadratureOrder::DEFAULT`] in f64: within 5e-11 of the converged integral
 //! for every `d` including 0, 1e-12, the patch edge and 1e12 (`tests/fls_accuracy.rs`), and
@@ -20,12 +23,12 @@
 mod disc;
 mod rect;
 
-pub mod aspect_grid;
-pub mod ellipse;
-pub mod sweep;
+mod aspect_grid;
+mod ellipse;
+mod sweep;
 
-pub use aspect_grid::AspectGrid;
-pub use ellipse::{EllipseFit, InscribedEllipse, RadialGap};
+pub use aspect_grid::{AspectEntry, AspectGrid, GridPosition};
+pub use ellipse::{ellipse_radius, EllipseFit, InscribedEllipse, RadialGap};
 pub use sweep::{FlsTable, SweepMap};
 
 use crate::error::{check, ConfigError};

@@ -11,7 +11,6 @@ use crate::sim::stream::RunStream;
 use crate::sim::trace::PlotTrace;
 use crate::CliError;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -247,11 +246,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         .iter()
         .map(|(s, _)| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
         .sum();
-    let bar = ProgressBar::new(total);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} ticks {msg} [{elapsed}<{eta}]")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = crate::progress::bar(total, "ticks", false);
     let mut all: Vec<RunSummary> = Vec::new();
     for (scene, text) in &loaded {
         let mut runs = Vec::new();

@@ -6,7 +6,7 @@ use crate::plot::{ellipse, plot_curves, Curve};
 use crate::sim::scene::{ControllerSettings, Finger};
 use crate::CliError;
 use clap::{Args, Subcommand, ValueEnum};
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use rayon::prelude::*;
 use serde::Deserialize;
 use softgrip::controller::blob::{encode, Blob, BLOB_MAX_LEN};
@@ -369,11 +369,7 @@ fn verify(file: &Path) -> Result<(), CliError> {
 }
 
 fn bar(len: u64, what: &str) -> ProgressBar {
-    let b = ProgressBar::new(len);
-    b.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}<{eta}]")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let b = crate::progress::bar(len, "", false);
     b.set_message(what.to_string());
     b
 }

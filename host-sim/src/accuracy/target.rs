@@ -110,6 +110,7 @@ fn run_one(link: &mut QemuLink, v: &Variant, loads: usize) -> Result<TargetCost,
 pub fn measure(
     measured: &BTreeMap<Variant, Measured>,
     b: &Budget,
+    progress: &super::Progress,
 ) -> Result<TargetResults, String> {
     let (qemu_dir, _) = default_paths();
     if !qemu_dir.join("usr/bin/qemu-system-arm").exists() {
@@ -124,9 +125,11 @@ pub fn measure(
     for v in measured.keys() {
         match firmware_variant(v) {
             Some(fw) => by_variant.entry(fw).or_default().push(*v),
-            None => out
-                .skipped
-                .push(format!("{}: no firmware for it", v.describe())),
+            None => {
+                out.skipped
+                    .push(format!("{}: no firmware for it", v.describe()));
+                progress.steps(1);
+            }
         }
     }
     for (fw, variants) in by_variant {
@@ -136,9 +139,10 @@ pub fn measure(
                 "{fw}: {} missing (scripts/firmware-build.sh {fw})",
                 elf.display()
             ));
+            progress.steps(variants.len() as u64);
             continue;
         }
-        super::progress(&format!("QEMU: {fw} ({} configurations)", variants.len()));
+        progress.phase(&format!("QEMU: {fw} ({} configurations)", variants.len()));
         let mut link = QemuLink::boot(&qemu_dir, &elf).map_err(|e| format!("{fw}: {e}"))?;
         for v in variants {
             match run_one(&mut link, &v, loads) {
@@ -147,6 +151,7 @@ pub fn measure(
                 }
                 Err(e) => out.skipped.push(format!("{}: {e}", v.describe())),
             }
+            progress.steps(1);
         }
         let _ = link.shutdown(0);
         let shown = elf

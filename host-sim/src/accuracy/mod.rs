@@ -23,10 +23,6 @@ pub mod knobs;
 pub mod report;
 pub mod target;
 
-#[path = "../../../tests/common/brute_force.rs"]
-#[allow(dead_code, missing_docs)]
-mod brute_force;
-
 use crate::CliError;
 use clap::Args;
 use indicatif::ProgressBar;

@@ -9,11 +9,10 @@
 
 use super::knobs::{median, rect_config, timing_loads, Budget, Engine, MathKind, Measured};
 use super::knobs::{Precision, Variant};
-use crate::link::qemu::{default_paths, QemuLink};
+use crate::link::qemu::{self, default_paths, QemuLink};
 use crate::link::Link;
 use softgrip::protocol::{CostUnit, Reply, Request, SensorFrame};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 /// One configuration's cost on the target, in instructions.
 #[derive(Debug, Clone, Copy)]
@@ -50,16 +49,6 @@ pub fn firmware_variant(v: &Variant) -> Option<&'static str> {
             _ => None,
         },
     }
-}
-
-fn elf_of(variant: &str) -> PathBuf {
-    let (_, default_elf) = default_paths();
-    let firmware_dir = default_elf
-        .parent()
-        .and_then(|p| p.parent())
-        .map(|p| p.to_path_buf())
-        .unwrap_or_default();
-    firmware_dir.join(variant).join("softgrip-firmware.elf")
 }
 
 fn run_one(link: &mut QemuLink, v: &Variant, loads: usize) -> Result<TargetCost, String> {
@@ -113,7 +102,7 @@ pub fn measure(
     progress: &super::Progress,
 ) -> Result<TargetResults, String> {
     let (qemu_dir, _) = default_paths();
-    if !qemu_dir.join("usr/bin/qemu-system-arm").exists() {
+    if !qemu::binary(&qemu_dir).exists() {
         return Err(format!(
             "no QEMU in {} (run scripts/firmware-setup.sh)",
             qemu_dir.display()
@@ -133,7 +122,7 @@ pub fn measure(
         }
     }
     for (fw, variants) in by_variant {
-        let elf = elf_of(fw);
+        let elf = qemu::firmware(fw);
         if !elf.exists() {
             out.skipped.push(format!(
                 "{fw}: {} missing (scripts/firmware-build.sh {fw})",

@@ -12,7 +12,8 @@ pub enum ShapeArg {
 }
 
 /// Arithmetic of a command's computation: the sweep (`fls`), the grid and solver
-/// (`required-force`).
+/// (`required-force`), the tables' precomputation (`tables`; the tables themselves are
+/// f32).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Precision {
     /// Double precision (default).

@@ -15,6 +15,7 @@ mod verify;
 pub use export::{flash_bytes, rust_source};
 pub use verify::{deviation, VERIFY_TOLERANCE};
 
+use crate::args::Precision;
 use crate::sim::scene::{ControllerSettings, Finger};
 use crate::CliError;
 use clap::{Args, Subcommand, ValueEnum};
@@ -33,15 +34,6 @@ pub enum TableFormat {
     Bin,
     /// CSV for analysis (`tables_nodes.csv`, `tables_directions.csv`).
     Csv,
-}
-
-/// Arithmetic of the precomputation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum TablePrecision {
-    /// f64 (default: free on the host).
-    F64,
-    /// f32, as the firmware computes them.
-    F32,
 }
 
 /// `tables verify`.
@@ -73,8 +65,8 @@ pub struct TablesArgs {
     #[arg(long, default_value = "table")]
     mode: String,
     /// Arithmetic of the precomputation.
-    #[arg(long, value_enum, default_value_t = TablePrecision::F64)]
-    precision: TablePrecision,
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    precision: Precision,
     /// Output directory.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -132,10 +124,10 @@ pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
     Ok(cfg)
 }
 
-fn build(cfg: ControllerConfig, precision: TablePrecision) -> Result<Controller<f32>, CliError> {
+fn build(cfg: ControllerConfig, precision: Precision) -> Result<Controller<f32>, CliError> {
     match precision {
-        TablePrecision::F64 => Controller::<f32>::new_precomputed_in::<f64>(cfg),
-        TablePrecision::F32 => Controller::<f32>::new(cfg),
+        Precision::F64 => Controller::<f32>::new_precomputed_in::<f64>(cfg),
+        Precision::F32 => Controller::<f32>::new(cfg),
     }
     .map_err(|e| usage(format!("--finger: {e}")))
 }

@@ -1,6 +1,6 @@
 //! Cost of the limit surface: a 128-sample sweep into an [`FlsTable`], one
 //! [`FlsModel::point`], and one point of the independent brute-force 2-D integrator of
-//! `tests/common/brute_force.rs`, so that one run gives the speed-up of the fast path,
+//! `softgrip-reference` (reference/), so that one run gives the speed-up of the fast path,
 //! `brute_force_point × 128 / sweep_128`.
 //!
 //! Run with `cargo bench --bench fls` (about a minute on two cores).
@@ -10,10 +10,6 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use softgrip::{FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
-
-#[path = "../tests/common/brute_force.rs"]
-#[allow(dead_code)]
-mod brute_force;
 
 /// The skew `(Δ/a, α, h/a)` of the paper: `Δ/a = 0.9`, `α = 1.1`, circular locus.
 const PAPER_SKEW: (f64, f64, f64) = (0.9, 1.1, 0.45);
@@ -67,7 +63,7 @@ fn point(c: &mut Criterion) {
 }
 
 fn brute_force_point(c: &mut Criterion) {
-    use brute_force::{Case, Patch};
+    use softgrip_reference::{Case, Patch};
     let mut group = c.benchmark_group("brute_force_point");
     group
         .sample_size(20)

@@ -1,5 +1,5 @@
 //! The fast path ([`FlsModel::point`]) against an independent brute-force 2-D integration of
-//! `docs/model.md`'s definitions (`tests/common/brute_force.rs`), and the equilibrium
+//! `docs/model.md`'s definitions (`softgrip-reference`, reference/), and the equilibrium
 //! `∫∫ p dΩ = N` of the skewed pressures.
 //!
 //! # Tolerances, from the brute force's measured convergence
@@ -26,11 +26,9 @@
 //! [`skew_is_resolved`]. The convergence guard was checked by mutation: dropping the cut at
 //! the centre of rotation from the brute force gives `|B(16) − B(32)|` ≈ 2e-4 and fails.
 
-mod common;
-
-use common::brute_force::{gauss_legendre, pressure_total, Case, Patch};
 use softgrip::skew::SkewLaw;
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
+use softgrip_reference::{gauss_legendre, pressure_total, Case, Patch};
 
 /// Cells per piece for the brute-force value compared against.
 const FINE: usize = 32;

@@ -15,11 +15,9 @@
 //!   `O` the surface's excursion outside the unit circle in `(f̃, m̃/pitch)`
 //!   ([`OUT_NORMALISED`]; [`GAP_NORMALISED`] is what Eq. 10 itself would under-ask).
 
-mod common;
 #[path = "common/stress_cases.rs"]
 mod stress_cases;
 
-use common::brute_force::{pressure_total, Patch};
 use proptest::prelude::*;
 use softgrip::contact::ContactSize;
 use softgrip::controller::{
@@ -30,6 +28,7 @@ use softgrip::fls::ellipse_radius;
 use softgrip::fls::RadialGap;
 use softgrip::skew::SkewLaw;
 use softgrip::{FlsTable, Real, Shape};
+use softgrip_reference::{pressure_total, Patch};
 use stress_cases::*;
 
 /// How far a symmetric rectangle's surface leaves the Eq. 10 ellipse, radially in

@@ -1,6 +1,6 @@
 //! Hard cases for the numerics, table-driven: every case asserts a finite result within a
 //! stated tolerance of a reference (a closed form written in `tests/common/stress_cases.rs`
-//! from docs/model.md, an asymptotic law, the brute force of `tests/common/brute_force.rs`, or
+//! from docs/model.md, an asymptotic law, the brute force of `softgrip-reference` (reference/), or
 //! the same integral at the highest quadrature order).
 //!
 //! The domain's corners: `k` from 1 to 1e6 and `∞`; skew `Δ/a` up to 0.999999; the centre of
@@ -11,11 +11,9 @@
 //! `cargo test --release --test stress -- --nocapture` prints the worst deviation of each
 //! table; the README quotes them.
 
-mod common;
 #[path = "common/stress_cases.rs"]
 mod stress_cases;
 
-use common::brute_force::{pressure_total, Case, Patch};
 use softgrip::contact::ContactSize;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
@@ -24,6 +22,7 @@ use softgrip::controller::{
 use softgrip::partial_slip::{deflection_m, stick_radius, Elasticity};
 use softgrip::skew::SkewLaw;
 use softgrip::Shape;
+use softgrip_reference::{pressure_total, Case, Patch};
 use stress_cases::*;
 
 /// One checked value: `got − want` must lie in `[lo, hi]`.

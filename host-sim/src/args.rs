@@ -1,6 +1,6 @@
 //! Argument types more than one command takes.
 
-use clap::ValueEnum;
+use clap::{Args, ValueEnum};
 
 /// Patch shape on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -12,11 +12,33 @@ pub enum ShapeArg {
 }
 
 /// Arithmetic of a command's computation: the sweep (`fls`), the grid and solver
-/// (`required-force`).
+/// (`required-force`), the tables' precomputation (`tables`; the tables themselves are
+/// f32).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Precision {
     /// Double precision (default).
     F64,
     /// Single precision, as on the Cortex-M4F (the firmware's tick).
     F32,
+}
+
+/// The fingertip's contact patch and pressure, as `fls` and `required-force` take them:
+/// the shape, the pressure exponent and the skew law of the pressure peak (Eq. 16, 17).
+#[derive(Debug, Clone, Copy, Args)]
+pub struct PatchArgs {
+    /// Patch shape.
+    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
+    pub shape: ShapeArg,
+    /// Pressure exponent k >= 1 (`inf` for uniform pressure).
+    #[arg(long, default_value_t = 2.0)]
+    pub k: f64,
+    /// Largest skew of the pressure peak, Δ/a in [0, 1); 0 is the symmetric profile.
+    #[arg(long, default_value_t = 0.0)]
+    pub skew: f64,
+    /// Rate α of the skew law Δy = Δ·tanh(α d_c/a).
+    #[arg(long, default_value_t = 1.1)]
+    pub alpha: f64,
+    /// Half-axis h/a of the peak's locus (Eq. 16); default Δ/2, the paper's circular path.
+    #[arg(long)]
+    pub locus: Option<f64>,
 }

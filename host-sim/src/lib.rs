@@ -8,6 +8,7 @@
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
 //! - [`sim`]: scenes, effects, ground truth, baselines, runs and their reports.
 //! - [`plot`]: limit-surface plots (`fls --plot`, `tables`).
+//! - [`progress`]: the progress bar of the long commands, on stderr.
 //! - [`input`]: bounded reading of every file the user names, and the value shortening
 //!   of error messages.
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
@@ -22,6 +23,7 @@ pub mod cmd;
 pub mod input;
 pub mod link;
 pub mod plot;
+pub mod progress;
 pub mod sim;
 
 /// A command-line failure with its exit code.

@@ -152,6 +152,24 @@ fn quick_report_has_every_section_finite_numbers_and_the_plot() {
         "{out}"
     );
     check_report(&dir);
+    // Not a terminal: no bar, but the phases as lines.
+    assert!(
+        err.contains("accuracy: core against brute force\n"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn quiet_prints_nothing_on_stderr_and_the_same_on_stdout() {
+    let dir = scratch("quiet");
+    let (code, out, err) = run(&["--quick", "--quiet", "--out", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "stderr: {err}");
+    assert!(err.is_empty(), "{err}");
+    assert!(
+        out.contains("default ellipse:") && out.contains("wrote "),
+        "{out}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -21,11 +21,13 @@
 //! need the most Illinois iterations, each after a far load and with a gross slip signal.
 
 use host_sim::cmd::simulate::elf_sections;
-use host_sim::link::qemu::{default_paths, QemuLink};
+use host_sim::link::qemu::QemuLink;
 use host_sim::link::Link;
 use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement, Mode, SlipSignal};
 use softgrip::protocol::{Reply, Request, SensorFrame};
 use std::path::{Path, PathBuf};
+
+mod common;
 
 const BEGIN: &str = "<!-- firmware-costs:begin";
 const END: &str = "<!-- firmware-costs:end -->";
@@ -329,20 +331,14 @@ fn check_budgets(rows: &[Firmware]) -> Vec<String> {
     ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default prebuilt-tables"
 )]
 fn the_readme_cost_table_is_the_measured_one_and_the_budgets_hold_or_are_listed() {
-    let (qemu, default_elf) = default_paths();
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-    let prebuilt_elf = root.join("target/firmware/prebuilt-tables/softgrip-firmware.elf");
-    if !qemu.join("usr/bin/qemu-system-arm").exists()
-        || !default_elf.exists()
-        || !prebuilt_elf.exists()
-    {
-        assert!(
-            std::env::var("SOFTGRIP_REQUIRE_QEMU").is_err(),
-            "SOFTGRIP_REQUIRE_QEMU is set but QEMU or a firmware is missing"
-        );
-        eprintln!("skipped: run scripts/firmware-setup.sh and scripts/firmware-build.sh default prebuilt-tables");
+    let Some(qemu) = common::qemu_for(&["default", "prebuilt-tables"]) else {
         return;
-    }
+    };
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    let (default_elf, prebuilt_elf) = (
+        host_sim::link::qemu::firmware("default"),
+        host_sim::link::qemu::firmware("prebuilt-tables"),
+    );
     let ellipse = ControllerConfig::default();
     let table = ControllerConfig {
         mode: Mode::Table,

@@ -5,22 +5,15 @@
 //! tests that need them are compiled as ignored, naming the command (`host-sim/build.rs`),
 //! unless `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it), which makes them fail instead.
 
-use host_sim::link::qemu::{default_paths, QemuLink};
+use host_sim::link::qemu::{self, QemuLink};
 use host_sim::link::Link;
 use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement, Mode};
 use softgrip::protocol::{CostUnit, Reply, Request, SensorFrame};
 
+mod common;
+
 fn available() -> Option<(std::path::PathBuf, std::path::PathBuf)> {
-    let (qemu, elf) = default_paths();
-    if qemu.join("usr/bin/qemu-system-arm").exists() && elf.exists() {
-        return Some((qemu, elf));
-    }
-    assert!(
-        std::env::var("SOFTGRIP_REQUIRE_QEMU").is_err(),
-        "SOFTGRIP_REQUIRE_QEMU is set but QEMU or the firmware is missing"
-    );
-    eprintln!("skipped: run scripts/firmware-setup.sh and scripts/firmware-build.sh");
-    None
+    common::qemu_and_firmware("default")
 }
 
 #[test]
@@ -121,8 +114,7 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
     let Some((qemu, _)) = available() else {
         return;
     };
-    let elf = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../target/firmware/prebuilt-tables/softgrip-firmware.elf");
+    let elf = qemu::firmware("prebuilt-tables");
     if !elf.exists() {
         eprintln!("skipped: run scripts/firmware-build.sh prebuilt-tables");
         return;

@@ -7,9 +7,10 @@
 //! them the test is compiled as ignored (`host-sim/build.rs`), unless
 //! `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets).
 
-use host_sim::link::qemu::{self, default_paths};
+use host_sim::link::qemu;
 use softgrip::controller::{Libm, TickMath};
-use std::path::PathBuf;
+
+mod common;
 
 const CANONICAL_NAN: u32 = 0x7FC0_0000;
 const SPECIALS: [u32; 6] = [0, 0x8000_0000, 0x7F80_0000, 0xFF80_0000, 1, 0x7F7F_FFFF];
@@ -40,20 +41,9 @@ fn host_digest() -> (u32, u64) {
     ignore = "needs QEMU and the sqrt-check firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh sqrt-check"
 )]
 fn the_firmware_square_root_is_bit_identical_to_the_hosts() {
-    let (qemu, _) = default_paths();
-    let elf = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../target/firmware/sqrt-check/softgrip-firmware.elf");
-    let bin = qemu.join("usr/bin/qemu-system-arm");
-    if !bin.exists() || !elf.exists() {
-        assert!(
-            std::env::var("SOFTGRIP_REQUIRE_QEMU").is_err(),
-            "SOFTGRIP_REQUIRE_QEMU is set but QEMU or the sqrt-check firmware is missing"
-        );
-        eprintln!(
-            "skipped: run scripts/firmware-setup.sh and scripts/firmware-build.sh sqrt-check"
-        );
+    let Some((qemu, elf)) = common::qemu_and_firmware("sqrt-check") else {
         return;
-    }
+    };
     let out = qemu::command(&qemu, &elf, "null", false).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     let line = stdout

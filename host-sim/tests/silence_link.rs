@@ -21,7 +21,9 @@
 //! `SOFTGRIP_REQUIRE_QEMU=1` (as `.ci/run` sets it).
 
 use host_sim::link::pty::PtyLink;
-use host_sim::link::qemu::{default_paths, QemuLink};
+use host_sim::link::qemu::QemuLink;
+
+mod common;
 use host_sim::link::Link;
 use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement};
 use softgrip::protocol::{Pacing, Reply, Request, SensorFrame, Stats};
@@ -236,26 +238,13 @@ fn a_cut_pty_link_moves_the_grip_to_its_safe_value_within_the_timeout() {
     assert_eq!(s.command_n, down.safe);
 }
 
-fn qemu() -> Option<(std::path::PathBuf, std::path::PathBuf)> {
-    let (qemu, elf) = default_paths();
-    if qemu.join("usr/bin/qemu-system-arm").exists() && elf.exists() {
-        return Some((qemu, elf));
-    }
-    assert!(
-        std::env::var("SOFTGRIP_REQUIRE_QEMU").is_err(),
-        "SOFTGRIP_REQUIRE_QEMU is set but QEMU or the firmware is missing"
-    );
-    eprintln!("skipped: run scripts/firmware-setup.sh and scripts/firmware-build.sh");
-    None
-}
-
 #[test]
 #[cfg_attr(
     no_qemu,
     ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
 )]
 fn a_cut_uart_moves_the_firmware_grip_to_its_safe_value_within_the_timeout() {
-    let Some((qemu_dir, elf)) = qemu() else {
+    let Some((qemu_dir, elf)) = common::qemu_and_firmware("default") else {
         return;
     };
     let mut link = QemuLink::boot_paced(&qemu_dir, &elf, Pacing::RealTime).unwrap();

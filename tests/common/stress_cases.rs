@@ -2,8 +2,8 @@
 //! closed forms written here from docs/model.md, independently of the crate's own closed forms,
 //! and the slip-prevention rule evaluated without any grid.
 //!
-//! Included with `#[path = "common/stress_cases.rs"] mod stress_cases;` (the shared
-//! `common/mod.rs` belongs to the other suites).
+//! Included with `#[path = "common/stress_cases.rs"] mod stress_cases;` (the brute-force
+//! reference the suites also use is the `softgrip-reference` crate, reference/).
 #![allow(dead_code)]
 
 use softgrip::contact::ContactSize;

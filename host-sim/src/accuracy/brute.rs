@@ -1,10 +1,10 @@
 //! The core's limit-surface point against the independent brute-force 2-D integration of
-//! `tests/common/brute_force.rs`, at matched accuracy: both are measured against the
+//! `softgrip-reference` (reference/), at matched accuracy: both are measured against the
 //! converged core (order 128) over the same centres of rotation, and timed per point.
 
-use super::brute_force::{Case, Patch};
 use super::knobs::{median, Budget};
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
+use softgrip_reference::{Case, Patch};
 use std::hint::black_box;
 use std::time::Instant;
 

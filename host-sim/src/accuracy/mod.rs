@@ -23,14 +23,11 @@ pub mod knobs;
 pub mod report;
 pub mod target;
 
-#[path = "../../../tests/common/brute_force.rs"]
-#[allow(dead_code, missing_docs)]
-mod brute_force;
-
 use crate::CliError;
 use clap::Args;
+use indicatif::ProgressBar;
 use knobs::{Budget, FingerRef, Knob, Measured, Variant};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -47,6 +44,9 @@ pub struct AccuracyArgs {
     /// scripts/firmware-setup.sh and scripts/firmware-build.sh; slow).
     #[arg(long)]
     target: bool,
+    /// No progress bar, no progress lines.
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// Where and when the report was made.
@@ -164,12 +164,53 @@ fn header() -> Header {
     }
 }
 
-fn progress(msg: &str) {
-    eprintln!("accuracy: {msg}");
+/// The progress of a run, on stderr: a bar (see [`crate::progress`]) over its steps (the
+/// references, each configuration measured, each timing round, the extras, the brute
+/// force, each configuration on the target), the phase as its message; and each phase as
+/// a line `accuracy: PHASE`, above the bar on a terminal and alone when stderr is not
+/// one. Nothing at all with `--quiet`.
+pub struct Progress {
+    bar: ProgressBar,
+    quiet: bool,
+}
+
+impl Progress {
+    /// Progress over `len` steps, silent if `quiet`.
+    pub fn new(len: u64, quiet: bool) -> Self {
+        Progress {
+            bar: crate::progress::bar(len, "steps", quiet),
+            quiet,
+        }
+    }
+
+    /// A new phase.
+    pub fn phase(&self, msg: &str) {
+        if self.quiet {
+            return;
+        }
+        let line = format!("accuracy: {msg}");
+        if self.bar.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.bar.println(line);
+        }
+        self.bar.set_message(msg.to_string());
+    }
+
+    /// `n` more steps done.
+    pub fn steps(&self, n: u64) {
+        self.bar.inc(n);
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
 }
 
 /// Measures everything `args` asks for.
-pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
+pub fn measure_all(quick: bool, with_target: bool, quiet: bool) -> Result<Results, String> {
     let started = Instant::now();
     let budget = if quick {
         Budget::quick()
@@ -177,24 +218,34 @@ pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
         Budget::full()
     };
     let header = header();
-    progress("exact references (order 128, f64)");
+    let sections: Vec<(Knob, Vec<(String, Variant)>)> =
+        Knob::ALL.iter().map(|&k| (k, k.rows(&budget))).collect();
+    let distinct = sections
+        .iter()
+        .flat_map(|(_, rows)| rows.iter().map(|(_, v)| v))
+        .collect::<BTreeSet<_>>()
+        .len() as u64;
+    // References, configurations, timing rounds, extras, brute force, target.
+    let steps = 2 + distinct + budget.rounds as u64 + 2 + if with_target { distinct } else { 0 };
+    let progress = Progress::new(steps, quiet);
+    progress.phase("exact references (order 128, f64)");
     let fingers = [
         FingerRef::build("rectangle", knobs::rect_config(), &budget)?,
         FingerRef::build("disc", knobs::disc_config(), &budget)?,
     ];
-    let sections: Vec<(Knob, Vec<(String, Variant)>)> =
-        Knob::ALL.iter().map(|&k| (k, k.rows(&budget))).collect();
+    progress.steps(2);
     let mut measured: BTreeMap<Variant, Measured> = BTreeMap::new();
     for (knob, rows) in &sections {
-        progress(&format!("{} ({} settings)", knob.title(), rows.len()));
+        progress.phase(&format!("{} ({} settings)", knob.title(), rows.len()));
         for (_, v) in rows {
             if !measured.contains_key(v) {
                 let m = knobs::measure(v, &fingers)?;
                 measured.insert(*v, m);
+                progress.steps(1);
             }
         }
     }
-    progress(&format!(
+    progress.phase(&format!(
         "timing {} configurations, {} rounds",
         measured.len(),
         budget.rounds
@@ -216,6 +267,7 @@ pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
             startups.push(s);
             ticks.push(t);
         }
+        progress.steps(1);
     }
     for (v, _, startups, ticks) in timers {
         if let Some(m) = measured.get_mut(&v) {
@@ -223,7 +275,7 @@ pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
             m.tick_ns = knobs::median(ticks);
         }
     }
-    progress("aspect grid and surface representations");
+    progress.phase("aspect grid and surface representations");
     let aspect_grid = extras::aspect_grid_rows(&fingers[0].reference, &budget.aspects, &budget)?;
     let probes = extras::representation_probes(&fingers[0].reference)
         .into_iter()
@@ -235,11 +287,13 @@ pub fn measure_all(quick: bool, with_target: bool) -> Result<Results, String> {
         &budget.samples,
         &budget,
     )?;
-    progress("core against brute force");
+    progress.steps(1);
+    progress.phase("core against brute force");
     let brute = brute::compare(&budget)?;
+    progress.steps(1);
     let target = if with_target {
-        progress("instruction counts in QEMU");
-        target::measure(&measured, &budget)
+        progress.phase("instruction counts in QEMU");
+        target::measure(&measured, &budget, &progress)
     } else {
         Err("not measured in this run (`--target`)".into())
     };
@@ -273,7 +327,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), CliError> {
             .open(p)
             .map_err(|e| fail(&format!("{}: {e}", p.display())))?;
     }
-    let results = measure_all(args.quick, args.target).map_err(CliError::Failed)?;
+    let results = measure_all(args.quick, args.target, args.quiet).map_err(CliError::Failed)?;
     report::plot(&svg_path, &results).map_err(|e| fail(&e))?;
     let md = report::markdown(&results);
     std::fs::write(&md_path, md).map_err(|e| fail(&format!("{}: {e}", md_path.display())))?;

@@ -9,11 +9,10 @@
 
 use super::knobs::{median, rect_config, timing_loads, Budget, Engine, MathKind, Measured};
 use super::knobs::{Precision, Variant};
-use crate::link::qemu::{default_paths, QemuLink};
+use crate::link::qemu::{self, default_paths, QemuLink};
 use crate::link::Link;
 use softgrip::protocol::{CostUnit, Reply, Request, SensorFrame};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 /// One configuration's cost on the target, in instructions.
 #[derive(Debug, Clone, Copy)]
@@ -50,16 +49,6 @@ pub fn firmware_variant(v: &Variant) -> Option<&'static str> {
             _ => None,
         },
     }
-}
-
-fn elf_of(variant: &str) -> PathBuf {
-    let (_, default_elf) = default_paths();
-    let firmware_dir = default_elf
-        .parent()
-        .and_then(|p| p.parent())
-        .map(|p| p.to_path_buf())
-        .unwrap_or_default();
-    firmware_dir.join(variant).join("softgrip-firmware.elf")
 }
 
 fn run_one(link: &mut QemuLink, v: &Variant, loads: usize) -> Result<TargetCost, String> {
@@ -110,9 +99,10 @@ fn run_one(link: &mut QemuLink, v: &Variant, loads: usize) -> Result<TargetCost,
 pub fn measure(
     measured: &BTreeMap<Variant, Measured>,
     b: &Budget,
+    progress: &super::Progress,
 ) -> Result<TargetResults, String> {
     let (qemu_dir, _) = default_paths();
-    if !qemu_dir.join("usr/bin/qemu-system-arm").exists() {
+    if !qemu::binary(&qemu_dir).exists() {
         return Err(format!(
             "no QEMU in {} (run scripts/firmware-setup.sh)",
             qemu_dir.display()
@@ -124,21 +114,24 @@ pub fn measure(
     for v in measured.keys() {
         match firmware_variant(v) {
             Some(fw) => by_variant.entry(fw).or_default().push(*v),
-            None => out
-                .skipped
-                .push(format!("{}: no firmware for it", v.describe())),
+            None => {
+                out.skipped
+                    .push(format!("{}: no firmware for it", v.describe()));
+                progress.steps(1);
+            }
         }
     }
     for (fw, variants) in by_variant {
-        let elf = elf_of(fw);
+        let elf = qemu::firmware(fw);
         if !elf.exists() {
             out.skipped.push(format!(
                 "{fw}: {} missing (scripts/firmware-build.sh {fw})",
                 elf.display()
             ));
+            progress.steps(variants.len() as u64);
             continue;
         }
-        super::progress(&format!("QEMU: {fw} ({} configurations)", variants.len()));
+        progress.phase(&format!("QEMU: {fw} ({} configurations)", variants.len()));
         let mut link = QemuLink::boot(&qemu_dir, &elf).map_err(|e| format!("{fw}: {e}"))?;
         for v in variants {
             match run_one(&mut link, &v, loads) {
@@ -147,6 +140,7 @@ pub fn measure(
                 }
                 Err(e) => out.skipped.push(format!("{}: {e}", v.describe())),
             }
+            progress.steps(1);
         }
         let _ = link.shutdown(0);
         let shown = elf

@@ -20,9 +20,8 @@ use crate::sim::controllers::LinkKind;
 use crate::sim::run::{self, RunOptions};
 use crate::CliError;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use rayon::prelude::*;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use sweep::{Row, Sweep, TrialResult, SWEEPS};
 
@@ -168,15 +167,7 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
     };
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
-    let bar = if args.quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new((args.trials * families.len()) as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} trials {msg} [{elapsed}<{eta}]")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = crate::progress::bar((args.trials * families.len()) as u64, "trials", args.quiet);
     let mut all: Vec<Row> = Vec::new();
     let mut dominance = Vec::new();
     for family in &families {

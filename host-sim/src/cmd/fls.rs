@@ -1,7 +1,7 @@
 //! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
 //! spreadsheets (`csv`) or for programs (`json`).
 
-use crate::args::{Precision, ShapeArg};
+use crate::args::{PatchArgs, Precision, ShapeArg};
 use crate::input::{config_error, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -30,24 +30,12 @@ pub enum Format {
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct FlsArgs {
-    /// Patch shape.
-    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
-    shape: ShapeArg,
-    /// Pressure exponent k >= 1 (`inf` for uniform pressure).
-    #[arg(long, default_value_t = 2.0)]
-    k: f64,
+    /// Shape, pressure exponent, skew.
+    #[command(flatten)]
+    patch: PatchArgs,
     /// Aspect ratio l/a of the rectangle (ignored for the disc).
     #[arg(long, default_value_t = 1.0)]
     aspect: f64,
-    /// Largest skew of the pressure peak, Δ/a in [0, 1); 0 is the symmetric profile.
-    #[arg(long, default_value_t = 0.0)]
-    skew: f64,
-    /// Rate α of the skew law Δy = Δ·tanh(α d_c/a).
-    #[arg(long, default_value_t = 1.1)]
-    alpha: f64,
-    /// Half-axis h/a of the peak's locus (Eq. 16); default Δ/2, the paper's circular path.
-    #[arg(long)]
-    locus: Option<f64>,
     /// Evaluate at these d_c/a (comma-separated) instead of along the sweep.
     #[arg(long, value_delimiter = ',')]
     at: Vec<f64>,
@@ -147,7 +135,7 @@ fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
 fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     // The surface's moment scale grows like l/a: beyond these the ellipse fit's fourth
     // powers overflow f32 (and, far out, f64).
-    let rect = args.shape == ShapeArg::Rect;
+    let rect = args.patch.shape == ShapeArg::Rect;
     if rect && args.aspect.is_finite() && !(1e-6..=1e6).contains(&args.aspect) {
         return Err(CliError::Usage(format!(
             "--aspect: {} is out of range, expected 1e-6 <= aspect <= 1e6",
@@ -155,23 +143,27 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
         )));
     }
     let order = QuadratureOrder::new(args.order).map_err(usage)?;
-    let shape = match args.shape {
+    let shape = match args.patch.shape {
         ShapeArg::Rect => Shape::Rect {
             aspect: args.aspect,
         },
         ShapeArg::Disc => Shape::Disc,
     };
-    for (name, v) in [("alpha", args.alpha), ("aspect", args.aspect)] {
+    for (name, v) in [("alpha", args.patch.alpha), ("aspect", args.aspect)] {
         if !v.is_finite() && (rect || name != "aspect") {
             return Err(CliError::Usage(format!(
                 "--{name}: must be a finite number"
             )));
         }
     }
-    let skew = if args.skew.is_nan() || args.skew != 0.0 {
-        Some((args.skew, args.alpha, args.locus.unwrap_or(args.skew / 2.0)))
+    let skew = if args.patch.skew.is_nan() || args.patch.skew != 0.0 {
+        Some((
+            args.patch.skew,
+            args.patch.alpha,
+            args.patch.locus.unwrap_or(args.patch.skew / 2.0),
+        ))
     } else {
-        if let Some(h) = args.locus {
+        if let Some(h) = args.patch.locus {
             if !h.is_finite() || h < 0.0 {
                 return Err(CliError::Usage(format!(
                     "--locus: {} is out of range, expected locus >= 0",
@@ -197,7 +189,7 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     }
     Ok(FlsConfig {
         shape,
-        k: args.k,
+        k: args.patch.k,
         skew,
         order,
     })
@@ -249,13 +241,13 @@ fn plot(path: &std::path::Path, cfg: FlsConfig) -> Result<(), CliError> {
 /// A model error naming the flag the user typed: `locus` when `--locus` was not given
 /// (it defaults to `--skew`/2) is reported on `--skew`.
 fn model_usage(args: &FlsArgs, e: ConfigError) -> CliError {
-    if e.param() == "locus" && args.locus.is_none() {
+    if e.param() == "locus" && args.patch.locus.is_none() {
         let reason = config_error("", &e);
         let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
         return CliError::Usage(format!(
             "--skew: {} with the default --locus (skew/2 = {}): {reason}",
-            short_num(args.skew),
-            short_num(args.skew / 2.0)
+            short_num(args.patch.skew),
+            short_num(args.patch.skew / 2.0)
         ));
     }
     usage(e)
@@ -309,10 +301,10 @@ fn run_in<T: Real>(args: &FlsArgs, cfg: FlsConfig) -> Result<(), CliError> {
     check_physical(args, &samples)?;
     let report = Report {
         shape: cfg.shape.name(),
-        k: args.k,
+        k: args.patch.k,
         aspect: matches!(cfg.shape, Shape::Rect { .. }).then_some(args.aspect),
-        skew: args.skew,
-        alpha: args.alpha,
+        skew: args.patch.skew,
+        alpha: args.patch.alpha,
         locus: cfg.skew.map(|s| s.2),
         precision: match args.precision {
             Precision::F64 => "f64",

@@ -2,7 +2,7 @@
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
-use crate::args::{Precision, ShapeArg};
+use crate::args::{PatchArgs, Precision, ShapeArg};
 use crate::input::{config_error, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
@@ -59,30 +59,18 @@ pub struct RequiredForceArgs {
     /// Contact-size exponent γ in [0, 1/2].
     #[arg(long)]
     gamma: f64,
-    /// Fingertip shape.
-    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
-    shape: ShapeArg,
+    /// Shape, pressure exponent, skew (only table mode sees the skew).
+    #[command(flatten)]
+    patch: PatchArgs,
     /// Half-length l of the rectangular patch [m] (ignored for the disc).
     #[arg(long, default_value_t = 0.01)]
     length: f64,
-    /// Pressure exponent k >= 1 (`inf` for uniform).
-    #[arg(long, default_value_t = 2.0)]
-    k: f64,
     /// Safety factor s >= 1.
     #[arg(long, default_value_t = 1.3)]
     safety: f64,
-    /// Ellipse or table.
+    /// Ellipse or table (only table mode sees --skew).
     #[arg(long, value_enum, default_value_t = ModeArg::Ellipse)]
     mode: ModeArg,
-    /// Skew of the pressure peak Δ/a in [0, 1) (table mode sees it; 0 = symmetric).
-    #[arg(long, default_value_t = 0.0)]
-    skew: f64,
-    /// Rate α of the skew law.
-    #[arg(long, default_value_t = 1.1)]
-    alpha: f64,
-    /// Half-axis h/a of the peak's locus; default Δ/2.
-    #[arg(long)]
-    locus: Option<f64>,
     /// Lower end of the controller's force grid [N]; answers below it are closed-form
     /// bounds.
     #[arg(long, default_value_t = 0.2)]
@@ -179,10 +167,10 @@ fn explain(args: &RequiredForceArgs, cfg: ControllerConfig, e: ConfigError) -> C
              computed (l/a {reason})",
             short_num(args.length)
         )),
-        "locus" if args.locus.is_none() => CliError::Usage(format!(
+        "locus" if args.patch.locus.is_none() => CliError::Usage(format!(
             "--skew: {} with the default --locus (skew/2 = {}): {reason}",
-            short_num(args.skew),
-            short_num(args.skew / 2.0)
+            short_num(args.patch.skew),
+            short_num(args.patch.skew / 2.0)
         )),
         "force_range_n" | "moment_range_nm" => {
             let overflow = "the worst load the sensor range admits, times safety/mu, \
@@ -249,22 +237,22 @@ fn finite(name: &str, v: f64) -> Result<f64, CliError> {
 pub fn config(args: &RequiredForceArgs) -> Result<ControllerConfig, CliError> {
     let ft = finite("ft", args.ft)?;
     let mn = finite("mn", args.mn)?;
-    let skew = if args.skew == 0.0 {
+    let skew = if args.patch.skew == 0.0 {
         None
     } else {
         Some(SkewParams {
-            delta_over_a: args.skew,
-            alpha: args.alpha,
-            locus_over_a: args.locus.unwrap_or(args.skew / 2.0),
+            delta_over_a: args.patch.skew,
+            alpha: args.patch.alpha,
+            locus_over_a: args.patch.locus.unwrap_or(args.patch.skew / 2.0),
         })
     };
     Ok(ControllerConfig {
         mu: args.mu,
-        shape: match args.shape {
+        shape: match args.patch.shape {
             ShapeArg::Rect => FingerShape::Rect,
             ShapeArg::Disc => FingerShape::Disc,
         },
-        k: args.k,
+        k: args.patch.k,
         skew,
         c_m_per_n_gamma: args.c,
         gamma: args.gamma,

@@ -15,10 +15,27 @@ use std::time::Duration;
 /// puts the default firmware, relative to the repository root.
 pub fn default_paths() -> (PathBuf, PathBuf) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-    (
-        root.join(".firmware/qemu"),
-        root.join("target/firmware/default/softgrip-firmware.elf"),
-    )
+    (root.join(".firmware/qemu"), firmware("default"))
+}
+
+/// Where `scripts/firmware-build.sh VARIANT` puts that firmware (`default`,
+/// `prebuilt-tables`, `sqrt-check`, ...).
+pub fn firmware(variant: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../target/firmware")
+        .join(variant)
+        .join("softgrip-firmware.elf")
+}
+
+/// The emulator under `qemu_dir` (where `scripts/firmware-setup.sh` unpacked it).
+pub fn binary(qemu_dir: &Path) -> PathBuf {
+    qemu_dir.join("usr/bin/qemu-system-arm")
+}
+
+/// Whether QEMU (in [`default_paths`]) and the firmware of every variant in `variants`
+/// (see [`firmware`]) are there.
+pub fn available(variants: &[&str]) -> bool {
+    binary(&default_paths().0).exists() && variants.iter().all(|v| firmware(v).exists())
 }
 
 /// A running emulator and the link to its firmware.
@@ -43,7 +60,7 @@ pub fn command(qemu_dir: &Path, elf: &Path, serial: &str, count_instructions: bo
         qemu_dir.join("usr/lib/x86_64-linux-gnu").display(),
         qemu_dir.join("lib/x86_64-linux-gnu").display()
     );
-    let mut cmd = Command::new(qemu_dir.join("usr/bin/qemu-system-arm"));
+    let mut cmd = Command::new(binary(qemu_dir));
     cmd.env("LD_LIBRARY_PATH", libs).args([
         "-machine",
         "netduinoplus2",
@@ -65,7 +82,7 @@ pub fn command(qemu_dir: &Path, elf: &Path, serial: &str, count_instructions: bo
 /// Starts QEMU on `elf` with its USART on a new pseudo-terminal, and returns the process
 /// and the pty's path (for [`SerialLink`], or `simulate --link serial --port PATH`).
 pub fn start(qemu_dir: &Path, elf: &Path) -> Result<(Child, String), LinkError> {
-    let bin = qemu_dir.join("usr/bin/qemu-system-arm");
+    let bin = binary(qemu_dir);
     if !bin.exists() {
         return Err(io(format!(
             "{} not found: run scripts/firmware-setup.sh",

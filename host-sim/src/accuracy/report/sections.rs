@@ -74,7 +74,7 @@ pub(super) fn brute_section(out: &mut String, results: &Results) {
         "One limit-surface point of the rectangle `l = a`, `k = 2`, at `d_c/a` ∈ {{{}}}: \
          the core's fast path (`FlsModel::point`, tanh-sinh quadrature of a 1-D integral) \
          against the independent brute-force 2-D Gauss–Legendre integration of \
-         `tests/common/brute_force.rs` (composite cells cut at every singular line, \
+         `reference/src/lib.rs` (composite cells cut at every singular line, \
          `cells` per piece and axis). Errors are the worst over those points in `f̃` or \
          `m̃` against the core at order 128; times are per point, medians of repeated \
          runs.\n",

@@ -1,6 +1,8 @@
 //! An independent brute-force 2-D integrator for one point of the friction limit surface,
 //! written straight from `docs/model.md` ("Sliding, friction and the limit surface") to check the
-//! fast path ([`softgrip::FlsModel::point`]).
+//! fast path ([`softgrip::FlsModel::point`]): the reference of the core's tests
+//! (`tests/fls_brute_force.rs`, the stress suites), of `benches/fls.rs` and of `host-sim
+//! accuracy`'s comparison at matched accuracy.
 //!
 //! It shares nothing with the crate's quadrature or its closed-form row and ring kernels:
 //! only the pressure functions [`softgrip::pressure::rect_skewed_pa`] and
@@ -46,6 +48,8 @@
 //!
 //! and for `∫∫ p dΩ = 1` (exact; k = 1…4, peaks up to 0.99 of the way to the edge):
 //! 1.4e-8 at `cells = 16`, 1.0e-9 at `cells = 32`.
+
+#![forbid(unsafe_code)]
 
 use softgrip::pressure::{disc_pa, rect_skewed_pa, KProfile};
 use softgrip::skew::SkewLaw;

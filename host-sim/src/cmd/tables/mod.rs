@@ -1,0 +1,163 @@
+//! `host-sim tables`: export the controller's start-up tables for the firmware (Rust
+//! source, a versioned binary blob, or CSV), verify a blob, plot limit surfaces as the
+//! paper's Figures 9–12 do, and sweep parameter sets in parallel.
+//!
+//! - `export`: the tables as Rust source, a blob or CSV.
+//! - `verify`: a blob against a fresh precomputation.
+//! - `figures`: the limit-surface plots (`--plot`).
+//! - `sweep`: the parameter sweep (`--sweep`).
+
+mod export;
+mod figures;
+mod sweep;
+mod verify;
+
+pub use export::{flash_bytes, rust_source};
+pub use verify::{deviation, VERIFY_TOLERANCE};
+
+use crate::args::Precision;
+use crate::sim::scene::{ControllerSettings, Finger};
+use crate::CliError;
+use clap::{Args, Subcommand, ValueEnum};
+use indicatif::ProgressBar;
+use serde::Deserialize;
+use softgrip::controller::{Controller, ControllerConfig, Mode};
+use std::path::{Path, PathBuf};
+
+/// Output format of `tables`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    /// Rust source of const tables (`softgrip_tables.rs`), for the firmware's
+    /// `prebuilt-tables` feature.
+    Rust,
+    /// A versioned, CRC-checked binary blob (`softgrip_tables.bin`).
+    Bin,
+    /// CSV for analysis (`tables_nodes.csv`, `tables_directions.csv`).
+    Csv,
+}
+
+/// `tables verify`.
+#[derive(Debug, Subcommand)]
+pub enum TablesAction {
+    /// Recompute the tables of a blob and report the largest deviation; exit 1 on a
+    /// corrupted or mismatched file.
+    Verify {
+        /// The blob (`.bin`).
+        file: PathBuf,
+    },
+}
+
+/// Arguments of `host-sim tables`.
+#[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct TablesArgs {
+    /// `verify FILE`.
+    #[command(subcommand)]
+    action: Option<TablesAction>,
+    /// A TOML file with a `[finger]` table (and optionally `[controller]`), e.g. a scene;
+    /// default: the controller's default finger.
+    #[arg(long)]
+    finger: Option<PathBuf>,
+    /// Export format.
+    #[arg(long, value_enum, default_value_t = TableFormat::Bin)]
+    format: TableFormat,
+    /// The controller mode the tables serve.
+    #[arg(long, default_value = "table")]
+    mode: String,
+    /// Arithmetic of the precomputation.
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    precision: Precision,
+    /// Output directory.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Also draw the limit surfaces as the paper's Figures 9–12 (SVG).
+    #[arg(long)]
+    plot: bool,
+    /// Also sweep k × skew × aspect × μ in parallel and write `sweep.csv`.
+    #[arg(long)]
+    sweep: bool,
+}
+
+#[derive(Debug, Deserialize)]
+struct FingerFile {
+    finger: Finger,
+    #[serde(default)]
+    controller: ControllerSettings,
+    #[serde(default = "default_tick_hz")]
+    tick_hz: f64,
+}
+
+fn default_tick_hz() -> f64 {
+    1000.0
+}
+
+fn usage(msg: impl std::fmt::Display) -> CliError {
+    CliError::Usage(msg.to_string())
+}
+
+/// The configuration the arguments describe.
+pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
+    let mode = match args.mode.as_str() {
+        "table" => Mode::Table,
+        "ellipse" => Mode::Ellipse,
+        other => {
+            return Err(usage(format!(
+                "--mode: \"{other}\" is not ellipse or table"
+            )))
+        }
+    };
+    let cfg = match &args.finger {
+        None => ControllerConfig::default(),
+        Some(p) => {
+            let text =
+                crate::input::read_capped_text(p, "--finger", crate::input::FINGER_CAP_BYTES)
+                    .map_err(|e| usage(e.to_string()))?;
+            let f: FingerFile = toml::from_str(&text)
+                .map_err(|e| usage(format!("--finger: {}: {}", p.display(), e.message().trim())))?;
+            crate::sim::run::controller_config_for(&f.finger, &f.controller, f.tick_hz)
+                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?
+        }
+    };
+    let cfg = ControllerConfig { mode, ..cfg };
+    cfg.validate()
+        .map_err(|e| usage(format!("--finger: {e}")))?;
+    Ok(cfg)
+}
+
+fn build(cfg: ControllerConfig, precision: Precision) -> Result<Controller<f32>, CliError> {
+    match precision {
+        Precision::F64 => Controller::<f32>::new_precomputed_in::<f64>(cfg),
+        Precision::F32 => Controller::<f32>::new(cfg),
+    }
+    .map_err(|e| usage(format!("--finger: {e}")))
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    std::fs::write(path, bytes)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))
+}
+
+fn bar(len: u64, what: &str) -> ProgressBar {
+    let b = crate::progress::bar(len, "", false);
+    b.set_message(what.to_string());
+    b
+}
+
+/// Runs `host-sim tables`.
+pub fn run(args: &TablesArgs) -> Result<(), CliError> {
+    if let Some(TablesAction::Verify { file }) = &args.action {
+        return verify::verify(file);
+    }
+    let out = args
+        .out
+        .as_ref()
+        .ok_or_else(|| usage("--out: required (the directory to write into)"))?;
+    export::export(args, out)?;
+    if args.plot {
+        figures::plot(out)?;
+    }
+    if args.sweep {
+        sweep::sweep(out)?;
+    }
+    Ok(())
+}

@@ -274,9 +274,9 @@ impl Scene {
         Self::load_with_text(path).map(|(scene, _)| scene)
     }
 
-    /// [`Scene::load`], also giving the file's text (for the effects' line numbers). The
-    /// file is read with a cap of [`SCENE_CAP_BYTES`] (`crate::input`): a larger or
-    /// endless one (`/dev/zero`) is refused after reading at most the cap.
+    /// [`Scene::load`], also giving the file's text. The file is read with a cap of
+    /// [`SCENE_CAP_BYTES`] (`crate::input`): a larger or endless one (`/dev/zero`) is
+    /// refused after reading at most the cap.
     pub fn load_with_text(path: &Path) -> Result<(Self, String), SceneError> {
         let shown = short(&path.display().to_string());
         let text = crate::input::read_capped_text(path, "scene", SCENE_CAP_BYTES)

@@ -1,7 +1,15 @@
 //! The effects a scene may call for. Each is a module with its source; the simulator
 //! builds its step pipeline from the scene's `effects` list, and an effect that is not
 //! listed is neither built nor stepped (nor does it draw random numbers: each effect owns
-//! a random stream seeded from the scene seed and its own name).
+//! a random stream seeded from the scene seed and its own name, [`rng`]).
+//!
+//! Each effect's module also declares its settings: a serde struct (`GravitySettings`,
+//! `SensorNoiseSettings`, ...) of its `[effect.NAME]` keys with their defaults and
+//! ranges ([`Settings`]); [`EffectSettings`] is one of them, and [`settings`] lists the
+//! effects ([`NAMES`]). The scene reads and checks every listed effect's settings once,
+//! when it is parsed ([`Scene::effect_settings`]); [`build`] then makes each effect from
+//! its own struct and what it needs besides (its random stream, or the fingertip). An
+//! effect never sees the [`Scene`] or its TOML.
 //!
 //! An effect hooks into one or more stages of a plant step, in this order:
 //! 1. [`Effect::load`]: forces and moments on the object (gravity, disturbances);

@@ -7,7 +7,7 @@ use host_sim::bench::oracle::{least_holding_force_n, mean_oracle_force_n};
 use host_sim::bench::sweep::{self, SWEEPS};
 use host_sim::sim::controllers::LinkKind;
 use host_sim::sim::effects::slip_sensor::SlipSensor;
-use host_sim::sim::effects::{Effect, EffectSettings, World};
+use host_sim::sim::effects::{self, Effect, EffectSettings, World};
 use host_sim::sim::record::Sample;
 use host_sim::sim::run::{
     self, build_truth, controller_config, is_drop, run_with, RunOptions, DROP_DISTANCE_M,
@@ -163,7 +163,10 @@ fn sensor(settings: &str) -> SlipSensor {
         )
     );
     let scene = Scene::parse(&t).unwrap();
-    SlipSensor::build(&EffectSettings::of(&scene, "slip_sensor", Some(&t))).unwrap()
+    let Some(EffectSettings::SlipSensor(s)) = scene.effect_settings.last() else {
+        panic!("no slip sensor in {:?}", scene.effect_settings);
+    };
+    SlipSensor::new(s, effects::rng(scene.seed, "slip_sensor"))
 }
 
 fn frame() -> SensorFrame {

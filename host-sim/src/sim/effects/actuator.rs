@@ -3,8 +3,42 @@
 //! compliant transmission), at most `slew_n_per_s`, and within `[0, max_force_n]` (its
 //! stall force).
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
+use serde::Deserialize;
+
+/// `[effect.actuator]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ActuatorSettings {
+    /// Time constant of the lag [s], in [0, 1e3] (0: none).
+    pub time_constant_s: f64,
+    /// Slew limit [N/s], in [1e-6, 1e9].
+    pub slew_n_per_s: f64,
+    /// Stall force [N], in [0, 1e9].
+    pub max_force_n: f64,
+}
+
+impl Default for ActuatorSettings {
+    fn default() -> Self {
+        Self {
+            time_constant_s: 0.02,
+            slew_n_per_s: 200.0,
+            max_force_n: 15.0,
+        }
+    }
+}
+
+impl Settings for ActuatorSettings {
+    const NAME: &'static str = "actuator";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("time_constant_s", self.time_constant_s, 0.0, 1e3),
+            Range::new("slew_n_per_s", self.slew_n_per_s, 1e-6, 1e9),
+            Range::new("max_force_n", self.max_force_n, 0.0, 1e9),
+        ]
+    }
+}
 
 /// First-order lag, slew limit and saturation.
 #[derive(Debug)]
@@ -15,14 +49,14 @@ pub struct Actuator {
 }
 
 impl Actuator {
-    /// Settings: `time_constant_s` (0.02), `slew_n_per_s` (200), `max_force_n` (15).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["time_constant_s", "slew_n_per_s", "max_force_n"])?;
-        Ok(Self {
-            time_constant_s: s.param("time_constant_s", 0.02, 0.0, 1e3)?,
-            slew_n_per_s: s.param("slew_n_per_s", 200.0, 1e-6, 1e9)?,
-            max_force_n: s.param("max_force_n", 15.0, 0.0, 1e9)?,
-        })
+    /// From its settings: `time_constant_s` (0.02), `slew_n_per_s` (200), `max_force_n`
+    /// (15).
+    pub fn new(s: &ActuatorSettings) -> Self {
+        Self {
+            time_constant_s: s.time_constant_s,
+            slew_n_per_s: s.slew_n_per_s,
+            max_force_n: s.max_force_n,
+        }
     }
 }
 

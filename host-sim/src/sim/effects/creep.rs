@@ -9,8 +9,38 @@
 //! with `a_eq = c·N^γ`. Right after a squeeze the patch is smaller than the controller's
 //! model assumes, so it resists less torsion.
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
+use serde::Deserialize;
+
+/// `[effect.creep]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CreepSettings {
+    /// Relaxation time constant `τ` [s], in [1e-6, 1e6].
+    pub time_constant_s: f64,
+    /// The part `φ` of a change that happens at once, in [0, 1].
+    pub instant_fraction: f64,
+}
+
+impl Default for CreepSettings {
+    fn default() -> Self {
+        Self {
+            time_constant_s: 0.3,
+            instant_fraction: 0.6,
+        }
+    }
+}
+
+impl Settings for CreepSettings {
+    const NAME: &'static str = "creep";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("time_constant_s", self.time_constant_s, 1e-6, 1e6),
+            Range::new("instant_fraction", self.instant_fraction, 0.0, 1.0),
+        ]
+    }
+}
 
 /// The creeping contact size.
 #[derive(Debug)]
@@ -21,14 +51,13 @@ pub struct Creep {
 }
 
 impl Creep {
-    /// Settings: `time_constant_s` (0.3), `instant_fraction` (0.6).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["time_constant_s", "instant_fraction"])?;
-        Ok(Self {
-            time_constant_s: s.param("time_constant_s", 0.3, 1e-6, 1e6)?,
-            instant_fraction: s.param("instant_fraction", 0.6, 0.0, 1.0)?,
+    /// From its settings: `time_constant_s` (0.3), `instant_fraction` (0.6).
+    pub fn new(s: &CreepSettings) -> Self {
+        Self {
+            time_constant_s: s.time_constant_s,
+            instant_fraction: s.instant_fraction,
             slow_m: None,
-        })
+        }
     }
 }
 

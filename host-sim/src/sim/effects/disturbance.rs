@@ -3,10 +3,48 @@
 //! sign). A common test load for grasp stability (e.g. the impulsive disturbances of
 //! slip-control experiments cited by the paper's introduction).
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use serde::Deserialize;
+
+/// `[effect.disturbance]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DisturbanceSettings {
+    /// Mean rate of bumps [Hz], in [0, 1e4].
+    pub rate_hz: f64,
+    /// Peak force of a bump [N], in [0, 1e6].
+    pub force_n: f64,
+    /// Peak moment of a bump [N·m], in [0, 1e6].
+    pub moment_nm: f64,
+    /// Length of a bump [s], in [1e-6, 1e3].
+    pub duration_s: f64,
+}
+
+impl Default for DisturbanceSettings {
+    fn default() -> Self {
+        Self {
+            rate_hz: 2.0,
+            force_n: 1.0,
+            moment_nm: 0.01,
+            duration_s: 0.05,
+        }
+    }
+}
+
+impl Settings for DisturbanceSettings {
+    const NAME: &'static str = "disturbance";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("rate_hz", self.rate_hz, 0.0, 1e4),
+            Range::new("force_n", self.force_n, 0.0, 1e6),
+            Range::new("moment_nm", self.moment_nm, 0.0, 1e6),
+            Range::new("duration_s", self.duration_s, 1e-6, 1e3),
+        ]
+    }
+}
 
 /// Random bumps.
 #[derive(Debug)]
@@ -20,17 +58,17 @@ pub struct Disturbance {
 }
 
 impl Disturbance {
-    /// Settings: `rate_hz` (2), `force_n` (1.0), `moment_nm` (0.01), `duration_s` (0.05).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["rate_hz", "force_n", "moment_nm", "duration_s"])?;
-        Ok(Self {
-            rate_hz: s.param("rate_hz", 2.0, 0.0, 1e4)?,
-            force_n: s.param("force_n", 1.0, 0.0, 1e6)?,
-            moment_nm: s.param("moment_nm", 0.01, 0.0, 1e6)?,
-            duration_s: s.param("duration_s", 0.05, 1e-6, 1e3)?,
-            rng: s.rng(),
+    /// From its settings (`rate_hz` (2), `force_n` (1.0), `moment_nm` (0.01),
+    /// `duration_s` (0.05)) and its random stream.
+    pub fn new(s: &DisturbanceSettings, rng: ChaCha8Rng) -> Self {
+        Self {
+            rate_hz: s.rate_hz,
+            force_n: s.force_n,
+            moment_nm: s.moment_nm,
+            duration_s: s.duration_s,
+            rng,
             active: Vec::new(),
-        })
+        }
     }
 }
 

@@ -5,8 +5,30 @@
 //! The weight comes onto the grasp as the object leaves its support: the scene's
 //! `support_fraction` (0 on the table, 1 once lifted) scales both.
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
+use serde::Deserialize;
+
+/// `[effect.gravity]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GravitySettings {
+    /// Gravitational acceleration [m/s²], in [0, 1e3].
+    pub g_m_s2: f64,
+}
+
+impl Default for GravitySettings {
+    fn default() -> Self {
+        Self { g_m_s2: 9.81 }
+    }
+}
+
+impl Settings for GravitySettings {
+    const NAME: &'static str = "gravity";
+    fn ranges(&self) -> Vec<Range> {
+        vec![Range::new("g_m_s2", self.g_m_s2, 0.0, 1e3)]
+    }
+}
 
 /// Weight and payload torque.
 #[derive(Debug)]
@@ -15,12 +37,9 @@ pub struct Gravity {
 }
 
 impl Gravity {
-    /// Setting: `g_m_s2` (default 9.81).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["g_m_s2"])?;
-        Ok(Self {
-            g_m_s2: s.param("g_m_s2", 9.81, 0.0, 1e3)?,
-        })
+    /// From its settings (`g_m_s2`, default 9.81).
+    pub fn new(s: &GravitySettings) -> Self {
+        Self { g_m_s2: s.g_m_s2 }
     }
 }
 

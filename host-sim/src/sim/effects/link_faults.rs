@@ -4,11 +4,45 @@
 //! checks must catch them; the device counts them, and the plant counts what it dropped,
 //! so every frame is accounted for.
 
-use super::{Effect, EffectSettings, LinkFate};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, LinkFate};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use serde::Deserialize;
 use softgrip::protocol::{encode, Request, SensorFrame, MAX_FRAME_LEN};
+
+/// `[effect.link_faults]`: probabilities per frame, each in [0, 1].
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LinkFaultsSettings {
+    /// A bit flip.
+    pub bit_flip_prob: f64,
+    /// A truncation.
+    pub truncate_prob: f64,
+    /// A drop.
+    pub drop_prob: f64,
+}
+
+impl Default for LinkFaultsSettings {
+    fn default() -> Self {
+        Self {
+            bit_flip_prob: 0.01,
+            truncate_prob: 0.005,
+            drop_prob: 0.005,
+        }
+    }
+}
+
+impl Settings for LinkFaultsSettings {
+    const NAME: &'static str = "link_faults";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("bit_flip_prob", self.bit_flip_prob, 0.0, 1.0),
+            Range::new("truncate_prob", self.truncate_prob, 0.0, 1.0),
+            Range::new("drop_prob", self.drop_prob, 0.0, 1.0),
+        ]
+    }
+}
 
 /// Bit flips, truncation and drops.
 #[derive(Debug)]
@@ -20,16 +54,15 @@ pub struct LinkFaults {
 }
 
 impl LinkFaults {
-    /// Settings (probabilities per frame): `bit_flip_prob` (0.01), `truncate_prob`
-    /// (0.005), `drop_prob` (0.005).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["bit_flip_prob", "truncate_prob", "drop_prob"])?;
-        Ok(Self {
-            bit_flip_prob: s.param("bit_flip_prob", 0.01, 0.0, 1.0)?,
-            truncate_prob: s.param("truncate_prob", 0.005, 0.0, 1.0)?,
-            drop_prob: s.param("drop_prob", 0.005, 0.0, 1.0)?,
-            rng: s.rng(),
-        })
+    /// From its settings (probabilities per frame: `bit_flip_prob` (0.01),
+    /// `truncate_prob` (0.005), `drop_prob` (0.005)) and its random stream.
+    pub fn new(s: &LinkFaultsSettings, rng: ChaCha8Rng) -> Self {
+        Self {
+            bit_flip_prob: s.bit_flip_prob,
+            truncate_prob: s.truncate_prob,
+            drop_prob: s.drop_prob,
+            rng,
+        }
     }
 }
 

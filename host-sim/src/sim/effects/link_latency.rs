@@ -2,10 +2,32 @@
 //! was taken (a serial link at a fixed baud rate plus buffering), so the command answers
 //! an old load. Frames keep their order.
 
-use super::{Effect, EffectSettings, LinkFate};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, LinkFate};
+use serde::Deserialize;
 use softgrip::protocol::SensorFrame;
 use std::collections::VecDeque;
+
+/// `[effect.link_latency]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LinkLatencySettings {
+    /// The delay [ticks], in [0, 1e5]; a fraction is dropped.
+    pub delay_ticks: f64,
+}
+
+impl Default for LinkLatencySettings {
+    fn default() -> Self {
+        Self { delay_ticks: 2.0 }
+    }
+}
+
+impl Settings for LinkLatencySettings {
+    const NAME: &'static str = "link_latency";
+    fn ranges(&self) -> Vec<Range> {
+        vec![Range::new("delay_ticks", self.delay_ticks, 0.0, 1e5)]
+    }
+}
 
 /// A delay line of frames.
 #[derive(Debug)]
@@ -15,14 +37,12 @@ pub struct LinkLatency {
 }
 
 impl LinkLatency {
-    /// Setting: `delay_ticks` (2).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["delay_ticks"])?;
-        let d = s.param("delay_ticks", 2.0, 0.0, 1e5)?;
-        Ok(Self {
-            delay_ticks: d as usize,
+    /// From its settings (`delay_ticks`, default 2).
+    pub fn new(s: &LinkLatencySettings) -> Self {
+        Self {
+            delay_ticks: s.delay_ticks as usize,
             queue: VecDeque::new(),
-        })
+        }
     }
 }
 

@@ -1,7 +1,15 @@
 //! The effects a scene may call for. Each is a module with its source; the simulator
 //! builds its step pipeline from the scene's `effects` list, and an effect that is not
 //! listed is neither built nor stepped (nor does it draw random numbers: each effect owns
-//! a random stream seeded from the scene seed and its own name).
+//! a random stream seeded from the scene seed and its own name, [`rng`]).
+//!
+//! Each effect's module also declares its settings: a serde struct (`GravitySettings`,
+//! `SensorNoiseSettings`, ...) of its `[effect.NAME]` keys with their defaults and
+//! ranges ([`Settings`]); [`EffectSettings`] is one of them, and [`settings`] lists the
+//! effects ([`NAMES`]). The scene reads and checks every listed effect's settings once,
+//! when it is parsed ([`Scene::effect_settings`]); [`build`] then makes each effect from
+//! its own struct and what it needs besides (its random stream, or the fingertip). An
+//! effect never sees the [`Scene`] or its TOML.
 //!
 //! An effect hooks into one or more stages of a plant step, in this order:
 //! 1. [`Effect::load`]: forces and moments on the object (gravity, disturbances);
@@ -24,18 +32,17 @@ pub mod link_latency;
 pub mod partial_slip;
 pub mod sensor_faults;
 pub mod sensor_noise;
-mod settings;
+pub mod settings;
 pub mod skewed_pressure;
 pub mod slip_sensor;
 
-use crate::sim::scene::{Scene, SceneError};
-pub use settings::EffectSettings;
+use crate::sim::scene::{Finger, Scene, SceneError};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+pub use settings::{EffectSettings, Range, Settings, Source, NAMES};
 use softgrip::controller::SkewParams;
 use softgrip::protocol::SensorFrame;
 use std::time::{Duration, Instant};
-
-/// Every effect a scene may list, in pipeline order (the scene format names them).
-pub use crate::sim::scene::EFFECT_NAMES as NAMES;
 
 /// The plant's state as the effects see it during one step. Loads are on the whole
 /// object; the two fingertips of the pinch each carry half.
@@ -129,57 +136,63 @@ pub struct Pipeline {
     timed: bool,
 }
 
-impl Pipeline {
-    /// Builds the listed effects from their settings (`text` is the scene file, for line
-    /// numbers in errors).
-    pub fn build(scene: &Scene, text: Option<&str>) -> Result<Self, SceneError> {
-        let mut effects: Vec<Box<dyn Effect>> = Vec::new();
-        for name in NAMES {
-            if !scene.effects.iter().any(|e| e == name) {
-                continue;
-            }
-            let e: Box<dyn Effect> = match name {
-                "gravity" => Box::new(gravity::Gravity::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "disturbance" => Box::new(disturbance::Disturbance::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "sensor_noise" => Box::new(sensor_noise::SensorNoise::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "sensor_faults" => Box::new(sensor_faults::SensorFaults::build(
-                    &EffectSettings::of(scene, name, text),
-                )?),
-                "slip_sensor" => Box::new(slip_sensor::SlipSensor::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "link_latency" => Box::new(link_latency::LinkLatency::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "link_faults" => Box::new(link_faults::LinkFaults::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "actuator" => Box::new(actuator::Actuator::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "creep" => Box::new(creep::Creep::build(&EffectSettings::of(scene, name, text))?),
-                "partial_slip" => Box::new(partial_slip::PartialSlip::build(&EffectSettings::of(
-                    scene, name, text,
-                ))?),
-                "skewed_pressure" => Box::new(skewed_pressure::SkewedPressure::build(
-                    &EffectSettings::of(scene, name, text),
-                )?),
-                _ => continue,
-            };
-            effects.push(e);
+/// A random stream of an effect's own: the scene seed mixed with the effect's name
+/// (FNV-1a), so listing an effect changes no other effect's random numbers.
+pub fn rng(seed: u64, name: &str) -> ChaCha8Rng {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for b in name.bytes() {
+        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+    }
+    ChaCha8Rng::seed_from_u64(seed ^ h)
+}
+
+/// Builds one effect from its settings, with what it needs besides: its random stream
+/// (from the scene's `seed`) or the true fingertip.
+pub fn build(
+    settings: &EffectSettings,
+    seed: u64,
+    finger: &Finger,
+) -> Result<Box<dyn Effect>, String> {
+    let rng = || rng(seed, settings.name());
+    Ok(match settings {
+        EffectSettings::Gravity(s) => Box::new(gravity::Gravity::new(s)),
+        EffectSettings::Disturbance(s) => Box::new(disturbance::Disturbance::new(s, rng())),
+        EffectSettings::SensorNoise(s) => Box::new(sensor_noise::SensorNoise::new(s, rng())?),
+        EffectSettings::SensorFaults(s) => Box::new(sensor_faults::SensorFaults::new(s, rng())),
+        EffectSettings::SlipSensor(s) => Box::new(slip_sensor::SlipSensor::new(s, rng())),
+        EffectSettings::LinkLatency(s) => Box::new(link_latency::LinkLatency::new(s)),
+        EffectSettings::LinkFaults(s) => Box::new(link_faults::LinkFaults::new(s, rng())),
+        EffectSettings::Actuator(s) => Box::new(actuator::Actuator::new(s)),
+        EffectSettings::Creep(s) => Box::new(creep::Creep::new(s)),
+        EffectSettings::PartialSlip(s) => Box::new(partial_slip::PartialSlip::new(s, finger)?),
+        EffectSettings::SkewedPressure(s) => {
+            Box::new(skewed_pressure::SkewedPressure::new(s, finger))
         }
+    })
+}
+
+impl Pipeline {
+    /// Builds the effects of `settings` (the scene's typed, checked settings of the listed
+    /// effects, in [`NAMES`] order), each from its own settings ([`build`]).
+    pub fn new(settings: &[EffectSettings], seed: u64, finger: &Finger) -> Result<Self, String> {
+        let effects = settings
+            .iter()
+            .map(|s| build(s, seed, finger))
+            .collect::<Result<Vec<_>, _>>()?;
         let cost = vec![Duration::ZERO; effects.len()];
         Ok(Self {
             effects,
             cost,
             timed: true,
         })
+    }
+
+    /// The pipeline of `scene`: [`Pipeline::new`] from its
+    /// [`effect_settings`](Scene::effect_settings), seed and finger. The settings were
+    /// read and checked when the scene was parsed (bad ones are reported there, with their
+    /// line), so `_text`, the scene file, is no longer needed; it is kept for the callers.
+    pub fn build(scene: &Scene, _text: Option<&str>) -> Result<Self, SceneError> {
+        Self::new(&scene.effect_settings, scene.seed, &scene.finger).map_err(SceneError)
     }
 
     /// The names of the built effects, in order.

@@ -5,9 +5,23 @@
 //! micro-displacement a tactile sensor would see before the object moves); the largest
 //! value is a run metric.
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
+use crate::sim::scene::Finger;
+use serde::Deserialize;
 use softgrip::partial_slip::{deflection_m, Elasticity};
+
+/// `[effect.partial_slip]`: none (the effect uses the finger's elasticity).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PartialSlipSettings {}
+
+impl Settings for PartialSlipSettings {
+    const NAME: &'static str = "partial_slip";
+    fn ranges(&self) -> Vec<Range> {
+        Vec::new()
+    }
+}
 
 /// The micro-displacement before gross slip.
 #[derive(Debug)]
@@ -17,14 +31,13 @@ pub struct PartialSlip {
 }
 
 impl PartialSlip {
-    /// Uses the finger's `young_modulus_pa` and `poisson`; no settings of its own.
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&[])?;
-        let elasticity = Elasticity::new(s.finger().young_modulus_pa, s.finger().poisson)
-            .map_err(|e| SceneError(format!("finger.{e}")))?;
+    /// From the finger's `young_modulus_pa`, `poisson` and `mu`; no settings of its own.
+    pub fn new(_: &PartialSlipSettings, finger: &Finger) -> Result<Self, String> {
+        let elasticity = Elasticity::new(finger.young_modulus_pa, finger.poisson)
+            .map_err(|e| format!("finger.{e}"))?;
         Ok(Self {
             elasticity,
-            mu: s.finger().mu,
+            mu: finger.mu,
         })
     }
 }

@@ -3,11 +3,49 @@
 //! saturation (every channel clipped at the sensor's range, silently, as an overloaded
 //! strain gauge does).
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use serde::Deserialize;
 use softgrip::protocol::SensorFrame;
+
+/// `[effect.sensor_faults]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorFaultsSettings {
+    /// Probability of a dropout per frame, in [0, 1].
+    pub dropout_prob: f64,
+    /// Probability of a NaN reading per frame, in [0, 1].
+    pub nan_prob: f64,
+    /// Saturation of the force channels [N], at least 0 (infinite: off).
+    pub saturation_n: f64,
+    /// Saturation of the moment channel [N·m], at least 0 (infinite: off).
+    pub saturation_nm: f64,
+}
+
+impl Default for SensorFaultsSettings {
+    fn default() -> Self {
+        Self {
+            dropout_prob: 0.01,
+            nan_prob: 0.005,
+            saturation_n: f64::INFINITY,
+            saturation_nm: f64::INFINITY,
+        }
+    }
+}
+
+impl Settings for SensorFaultsSettings {
+    const NAME: &'static str = "sensor_faults";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("dropout_prob", self.dropout_prob, 0.0, 1.0),
+            Range::new("nan_prob", self.nan_prob, 0.0, 1.0),
+            Range::new("saturation_n", self.saturation_n, 0.0, f64::INFINITY),
+            Range::new("saturation_nm", self.saturation_nm, 0.0, f64::INFINITY),
+        ]
+    }
+}
 
 /// Dropouts, NaN and saturation.
 #[derive(Debug)]
@@ -21,18 +59,17 @@ pub struct SensorFaults {
 }
 
 impl SensorFaults {
-    /// Settings: `dropout_prob` (0.01 per frame), `nan_prob` (0.005), `saturation_n`
-    /// (infinite: off), `saturation_nm` (infinite).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["dropout_prob", "nan_prob", "saturation_n", "saturation_nm"])?;
-        Ok(Self {
-            dropout_prob: s.param("dropout_prob", 0.01, 0.0, 1.0)?,
-            nan_prob: s.param("nan_prob", 0.005, 0.0, 1.0)?,
-            saturation_n: s.param("saturation_n", f64::INFINITY, 0.0, f64::INFINITY)?,
-            saturation_nm: s.param("saturation_nm", f64::INFINITY, 0.0, f64::INFINITY)?,
+    /// From its settings (`dropout_prob` (0.01 per frame), `nan_prob` (0.005),
+    /// `saturation_n` (infinite: off), `saturation_nm` (infinite)) and its random stream.
+    pub fn new(s: &SensorFaultsSettings, rng: ChaCha8Rng) -> Self {
+        Self {
+            dropout_prob: s.dropout_prob,
+            nan_prob: s.nan_prob,
+            saturation_n: s.saturation_n,
+            saturation_nm: s.saturation_nm,
             last: None,
-            rng: s.rng(),
-        })
+            rng,
+        }
     }
 }
 

@@ -2,11 +2,53 @@
 //! force/torque sensor, plus a constant bias on the tangential force and the moment (the
 //! usual error model of strain-gauge F/T sensors).
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
+use serde::Deserialize;
 use softgrip::protocol::SensorFrame;
+
+/// `[effect.sensor_noise]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorNoiseSettings {
+    /// Standard deviation of the tangential force's noise [N], in [0, 1e6].
+    pub force_sd_n: f64,
+    /// Standard deviation of the moment's noise [N·m], in [0, 1e6].
+    pub moment_sd_nm: f64,
+    /// Standard deviation of the normal force's noise [N], in [0, 1e6].
+    pub normal_sd_n: f64,
+    /// Bias of the tangential force [N], in [-1e6, 1e6].
+    pub bias_force_n: f64,
+    /// Bias of the moment [N·m], in [-1e6, 1e6].
+    pub bias_moment_nm: f64,
+}
+
+impl Default for SensorNoiseSettings {
+    fn default() -> Self {
+        Self {
+            force_sd_n: 0.02,
+            moment_sd_nm: 2e-4,
+            normal_sd_n: 0.02,
+            bias_force_n: 0.0,
+            bias_moment_nm: 0.0,
+        }
+    }
+}
+
+impl Settings for SensorNoiseSettings {
+    const NAME: &'static str = "sensor_noise";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new("force_sd_n", self.force_sd_n, 0.0, 1e6),
+            Range::new("moment_sd_nm", self.moment_sd_nm, 0.0, 1e6),
+            Range::new("normal_sd_n", self.normal_sd_n, 0.0, 1e6),
+            Range::new("bias_force_n", self.bias_force_n, -1e6, 1e6),
+            Range::new("bias_moment_nm", self.bias_moment_nm, -1e6, 1e6),
+        ]
+    }
+}
 
 /// Gaussian noise and bias.
 #[derive(Debug)]
@@ -20,26 +62,19 @@ pub struct SensorNoise {
 }
 
 impl SensorNoise {
-    /// Settings: `force_sd_n` (0.02), `moment_sd_nm` (2e-4), `normal_sd_n` (0.02),
-    /// `bias_force_n` (0), `bias_moment_nm` (0).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        let e = "sensor_noise";
-        s.check_keys(&[
-            "force_sd_n",
-            "moment_sd_nm",
-            "normal_sd_n",
-            "bias_force_n",
-            "bias_moment_nm",
-        ])?;
-        let normal =
-            |sd: f64| Normal::new(0.0, sd).map_err(|err| SceneError(format!("effect.{e}: {err}")));
+    /// From its settings (`force_sd_n` (0.02), `moment_sd_nm` (2e-4), `normal_sd_n`
+    /// (0.02), `bias_force_n` (0), `bias_moment_nm` (0)) and its random stream.
+    pub fn new(s: &SensorNoiseSettings, rng: ChaCha8Rng) -> Result<Self, String> {
+        let normal = |key: &str, sd: f64| {
+            Normal::new(0.0, sd).map_err(|err| format!("effect.sensor_noise.{key}: {err}"))
+        };
         Ok(Self {
-            force: normal(s.param("force_sd_n", 0.02, 0.0, 1e6)?)?,
-            moment: normal(s.param("moment_sd_nm", 2e-4, 0.0, 1e6)?)?,
-            normal: normal(s.param("normal_sd_n", 0.02, 0.0, 1e6)?)?,
-            bias_force_n: s.param("bias_force_n", 0.0, -1e6, 1e6)?,
-            bias_moment_nm: s.param("bias_moment_nm", 0.0, -1e6, 1e6)?,
-            rng: s.rng(),
+            force: normal("force_sd_n", s.force_sd_n)?,
+            moment: normal("moment_sd_nm", s.moment_sd_nm)?,
+            normal: normal("normal_sd_n", s.normal_sd_n)?,
+            bias_force_n: s.bias_force_n,
+            bias_moment_nm: s.bias_moment_nm,
+            rng,
         })
     }
 }

@@ -1,99 +1,183 @@
-//! What an effect is built from, and all it sees of the scene: its own `[effect.NAME]`
-//! table (with the file's text, for line numbers in errors), its random stream, and the
-//! fingertip. The pipeline makes one per listed effect ([`EffectSettings::of`]); the
-//! effects never see the [`Scene`] itself, so the scene format and the effects depend one
-//! way only (effects on the scene's types, not the scene on the effects).
+//! The effects' settings, typed. Each effect declares, beside its code, a serde struct of
+//! its settings ([`Settings`]: its `[effect.NAME]` keys as fields, today's defaults, and
+//! the range each setting must lie in); [`EffectSettings`] holds one of them per effect.
+//!
+//! The scene reads them: once, while it is parsed, it turns each listed effect's table
+//! into that effect's struct through a [`Source`] ([`EffectSettings::read`] picks the
+//! struct by name), checks the ranges, and reports a bad key or value with its line. The
+//! effects only ever receive their own struct, checked; they never see the scene or its
+//! TOML, and this module names no scene type: the scene depends on the effects' settings,
+//! not the other way round.
 
-use crate::input::{short, short_num};
-use crate::sim::scene::{line_of, Finger, Scene, SceneError};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use super::{
+    actuator::ActuatorSettings, creep::CreepSettings, disturbance::DisturbanceSettings,
+    gravity::GravitySettings, link_faults::LinkFaultsSettings, link_latency::LinkLatencySettings,
+    partial_slip::PartialSlipSettings, sensor_faults::SensorFaultsSettings,
+    sensor_noise::SensorNoiseSettings, skewed_pressure::SkewedPressureSettings,
+    slip_sensor::SlipSensorSettings,
+};
+use serde::de::DeserializeOwned;
 
-/// One effect's settings and the parts of the scene it may use.
-#[derive(Debug, Clone, Copy)]
-pub struct EffectSettings<'a> {
-    name: &'a str,
-    table: Option<&'a toml::Table>,
-    text: Option<&'a str>,
-    seed: u64,
-    finger: &'a Finger,
+/// Every effect a scene may list, in pipeline order.
+pub const NAMES: [&str; 11] = [
+    "gravity",
+    "disturbance",
+    "sensor_noise",
+    "sensor_faults",
+    "slip_sensor",
+    "link_latency",
+    "link_faults",
+    "actuator",
+    "creep",
+    "partial_slip",
+    "skewed_pressure",
+];
+
+/// One setting's value and the closed range `[lo, hi]` it must lie in (a NaN lies in
+/// none).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// The setting's key (its field's name).
+    pub key: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// Least allowed value.
+    pub lo: f64,
+    /// Greatest allowed value.
+    pub hi: f64,
 }
 
-impl<'a> EffectSettings<'a> {
-    /// The settings of effect `name` in `scene` (`text` is the scene file, for line numbers
-    /// in errors).
-    pub fn of(scene: &'a Scene, name: &'a str, text: Option<&'a str>) -> Self {
-        Self {
-            name,
-            table: scene.effect.get(name),
-            text,
-            seed: scene.seed,
-            finger: &scene.finger,
-        }
+impl Range {
+    /// `key = value` must lie in `[lo, hi]`.
+    pub fn new(key: &'static str, value: f64, lo: f64, hi: f64) -> Self {
+        Self { key, value, lo, hi }
+    }
+
+    /// Whether the value lies in the range.
+    pub fn holds(&self) -> bool {
+        (self.lo..=self.hi).contains(&self.value)
+    }
+}
+
+/// One effect's settings: a struct whose fields are the keys of its `[effect.NAME]` table
+/// (every one a number; an integer is taken as a float), with
+/// `#[serde(deny_unknown_fields, default)]` and a [`Default`] giving each absent key its
+/// default.
+pub trait Settings: Default + DeserializeOwned {
+    /// The effect's name, as a scene lists it.
+    const NAME: &'static str;
+
+    /// Each setting with its allowed range, in the order they are checked (a setting
+    /// whose default depends on others, an `Option`, only when given).
+    fn ranges(&self) -> Vec<Range>;
+}
+
+/// Where settings come from: the scene implements it over its `[effect.NAME]` tables.
+pub trait Source {
+    /// Why settings could not be read.
+    type Error;
+    /// The settings of effect `T::NAME`, read and checked (the defaults if it has no
+    /// table).
+    fn read<T: Settings>(&mut self) -> Result<T, Self::Error>;
+}
+
+/// One listed effect's settings.
+#[derive(Debug, Clone, PartialEq)]
+#[allow(missing_docs)]
+pub enum EffectSettings {
+    Gravity(GravitySettings),
+    Disturbance(DisturbanceSettings),
+    SensorNoise(SensorNoiseSettings),
+    SensorFaults(SensorFaultsSettings),
+    SlipSensor(SlipSensorSettings),
+    LinkLatency(LinkLatencySettings),
+    LinkFaults(LinkFaultsSettings),
+    Actuator(ActuatorSettings),
+    Creep(CreepSettings),
+    PartialSlip(PartialSlipSettings),
+    SkewedPressure(SkewedPressureSettings),
+}
+
+impl EffectSettings {
+    /// The settings of the effect called `name`, read from `source`; `None` if no effect
+    /// has that name (the names are [`NAMES`]).
+    pub fn read<S: Source>(name: &str, source: &mut S) -> Option<Result<Self, S::Error>> {
+        Some(match name {
+            "gravity" => source.read().map(Self::Gravity),
+            "disturbance" => source.read().map(Self::Disturbance),
+            "sensor_noise" => source.read().map(Self::SensorNoise),
+            "sensor_faults" => source.read().map(Self::SensorFaults),
+            "slip_sensor" => source.read().map(Self::SlipSensor),
+            "link_latency" => source.read().map(Self::LinkLatency),
+            "link_faults" => source.read().map(Self::LinkFaults),
+            "actuator" => source.read().map(Self::Actuator),
+            "creep" => source.read().map(Self::Creep),
+            "partial_slip" => source.read().map(Self::PartialSlip),
+            "skewed_pressure" => source.read().map(Self::SkewedPressure),
+            _ => return None,
+        })
     }
 
     /// The effect's name.
-    pub fn name(&self) -> &str {
-        self.name
-    }
-
-    /// The true fingertip.
-    pub fn finger(&self) -> &Finger {
-        self.finger
-    }
-
-    /// A random stream of the effect's own: the scene seed mixed with the effect's name
-    /// (FNV-1a), so listing an effect changes no other effect's random numbers.
-    pub fn rng(&self) -> ChaCha8Rng {
-        let mut h = 0xcbf2_9ce4_8422_2325u64;
-        for b in self.name.bytes() {
-            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Gravity(_) => GravitySettings::NAME,
+            Self::Disturbance(_) => DisturbanceSettings::NAME,
+            Self::SensorNoise(_) => SensorNoiseSettings::NAME,
+            Self::SensorFaults(_) => SensorFaultsSettings::NAME,
+            Self::SlipSensor(_) => SlipSensorSettings::NAME,
+            Self::LinkLatency(_) => LinkLatencySettings::NAME,
+            Self::LinkFaults(_) => LinkFaultsSettings::NAME,
+            Self::Actuator(_) => ActuatorSettings::NAME,
+            Self::Creep(_) => CreepSettings::NAME,
+            Self::PartialSlip(_) => PartialSlipSettings::NAME,
+            Self::SkewedPressure(_) => SkewedPressureSettings::NAME,
         }
-        ChaCha8Rng::seed_from_u64(self.seed ^ h)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A [`Source`] of the defaults.
+    struct Defaults;
+
+    impl Source for Defaults {
+        type Error = std::convert::Infallible;
+        fn read<T: Settings>(&mut self) -> Result<T, Self::Error> {
+            Ok(T::default())
+        }
     }
 
-    /// Refuses keys the effect does not know (typos would otherwise be silently ignored).
-    pub fn check_keys(&self, known: &[&str]) -> Result<(), SceneError> {
-        if let Some(table) = self.table {
-            for key in table.keys() {
-                if !known.contains(&key.as_str()) {
-                    return Err(SceneError(format!(
-                        "effect.{}.{key}: unknown setting, expected one of {}",
-                        self.name,
-                        known.join(", ")
-                    )));
-                }
+    #[test]
+    fn every_name_has_its_settings_and_every_default_lies_in_its_range() {
+        let names: Vec<&str> = NAMES
+            .iter()
+            .map(|n| {
+                EffectSettings::read(n, &mut Defaults)
+                    .unwrap()
+                    .unwrap()
+                    .name()
+            })
+            .collect();
+        assert_eq!(names, NAMES);
+        assert!(EffectSettings::read("nope", &mut Defaults).is_none());
+        fn check<T: Settings>() {
+            for r in T::default().ranges() {
+                assert!(r.holds(), "{}.{}: {r:?}", T::NAME, r.key);
             }
         }
-        Ok(())
-    }
-
-    /// A number from the effect's table, or `default` when absent. A present value of the
-    /// wrong type or out of `[lo, hi]` is an error naming the key (and its line).
-    pub fn param(&self, key: &str, default: f64, lo: f64, hi: f64) -> Result<f64, SceneError> {
-        let effect = self.name;
-        let Some(v) = self.table.and_then(|t| t.get(key)) else {
-            return Ok(default);
-        };
-        let x = v
-            .as_float()
-            .or_else(|| v.as_integer().map(|i| i as f64))
-            .ok_or_else(|| {
-                SceneError(format!(
-                    "effect.{effect}.{key}: {} is not a number",
-                    short(&v.to_string())
-                ))
-            })?;
-        if !(lo..=hi).contains(&x) {
-            let at = self
-                .text
-                .and_then(|t| line_of(t, &format!("effect.{effect}"), key))
-                .map_or(String::new(), |l| format!("line {l}: "));
-            return Err(SceneError(format!(
-                "{at}effect.{effect}.{key}: {} is out of range [{lo}, {hi}]",
-                short_num(x)
-            )));
-        }
-        Ok(x)
+        check::<GravitySettings>();
+        check::<DisturbanceSettings>();
+        check::<SensorNoiseSettings>();
+        check::<SensorFaultsSettings>();
+        check::<SlipSensorSettings>();
+        check::<LinkLatencySettings>();
+        check::<LinkFaultsSettings>();
+        check::<ActuatorSettings>();
+        check::<CreepSettings>();
+        check::<PartialSlipSettings>();
+        check::<SkewedPressureSettings>();
     }
 }

@@ -3,9 +3,48 @@
 //! the true limit surface. The ground truth is then built from the skewed surface;
 //! the controller is not told (it models the symmetric profile).
 
-use super::{Effect, EffectSettings};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::Effect;
+use crate::sim::scene::Finger;
+use serde::Deserialize;
 use softgrip::controller::SkewParams;
+
+/// `[effect.skewed_pressure]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SkewedPressureSettings {
+    /// Shift of the pressure peak `Δ/a`, in [0, 0.999999].
+    pub delta_over_a: f64,
+    /// Shape exponent `α`, in [1e-9, 1e9].
+    pub alpha: f64,
+    /// Locus of the skew `/a`, in [0, 1]; by default 0 on the disc (where a sideways
+    /// locus folds the surface) and `Δ/2` on the rectangle (where it changes nothing).
+    pub locus_over_a: Option<f64>,
+}
+
+impl Default for SkewedPressureSettings {
+    fn default() -> Self {
+        Self {
+            delta_over_a: 0.9,
+            alpha: 1.1,
+            locus_over_a: None,
+        }
+    }
+}
+
+impl Settings for SkewedPressureSettings {
+    const NAME: &'static str = "skewed_pressure";
+    fn ranges(&self) -> Vec<Range> {
+        let mut r = vec![
+            Range::new("delta_over_a", self.delta_over_a, 0.0, 0.999_999),
+            Range::new("alpha", self.alpha, 1e-9, 1e9),
+        ];
+        if let Some(locus) = self.locus_over_a {
+            r.push(Range::new("locus_over_a", locus, 0.0, 1.0));
+        }
+        r
+    }
+}
 
 /// The true contact's skew.
 #[derive(Debug)]
@@ -14,24 +53,23 @@ pub struct SkewedPressure {
 }
 
 impl SkewedPressure {
-    /// Settings: `delta_over_a` (0.9), `alpha` (1.1), `locus_over_a` (0 on the disc,
-    /// where a sideways locus folds the surface; Δ/2 on the rectangle, where it changes
-    /// nothing).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&["delta_over_a", "alpha", "locus_over_a"])?;
-        let delta = s.param("delta_over_a", 0.9, 0.0, 0.999_999)?;
-        let default_locus = if s.finger().shape == "disc" {
+    /// From its settings (`delta_over_a` (0.9), `alpha` (1.1), `locus_over_a` (0 on the
+    /// disc, where a sideways locus folds the surface; Δ/2 on the rectangle, where it
+    /// changes nothing)) and the finger's shape.
+    pub fn new(s: &SkewedPressureSettings, finger: &Finger) -> Self {
+        let delta = s.delta_over_a;
+        let default_locus = if finger.shape == "disc" {
             0.0
         } else {
             delta / 2.0
         };
-        Ok(Self {
+        Self {
             skew: SkewParams {
                 delta_over_a: delta,
-                alpha: s.param("alpha", 1.1, 1e-9, 1e9)?,
-                locus_over_a: s.param("locus_over_a", default_locus, 0.0, 1.0)?,
+                alpha: s.alpha,
+                locus_over_a: s.locus_over_a.unwrap_or(default_locus),
             },
-        })
+        }
     }
 }
 

@@ -25,12 +25,55 @@
 //! It draws from its own random stream (seeded from the scene seed and its name), so
 //! listing it changes no other effect's random numbers.
 
-use super::{Effect, EffectSettings, World};
-use crate::sim::scene::SceneError;
+use super::settings::{Range, Settings};
+use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use serde::Deserialize;
 use softgrip::protocol::{SensorFrame, SlipSignal};
 use std::collections::VecDeque;
+
+/// `[effect.slip_sensor]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SlipSensorSettings {
+    /// The true utilisation above which it reports `Incipient`, in [0, 1].
+    pub incipient_utilisation: f64,
+    /// How late it reports [s], in [0, 10].
+    pub latency_s: f64,
+    /// Probability of missing a whole episode, in [0, 1].
+    pub miss_probability: f64,
+    /// Rate of false `Incipient` reports [Hz], in [0, 1e4].
+    pub false_alarm_rate_hz: f64,
+}
+
+impl Default for SlipSensorSettings {
+    fn default() -> Self {
+        Self {
+            incipient_utilisation: 0.9,
+            latency_s: 0.005,
+            miss_probability: 0.05,
+            false_alarm_rate_hz: 0.2,
+        }
+    }
+}
+
+impl Settings for SlipSensorSettings {
+    const NAME: &'static str = "slip_sensor";
+    fn ranges(&self) -> Vec<Range> {
+        vec![
+            Range::new(
+                "incipient_utilisation",
+                self.incipient_utilisation,
+                0.0,
+                1.0,
+            ),
+            Range::new("latency_s", self.latency_s, 0.0, 10.0),
+            Range::new("miss_probability", self.miss_probability, 0.0, 1.0),
+            Range::new("false_alarm_rate_hz", self.false_alarm_rate_hz, 0.0, 1e4),
+        ]
+    }
+}
 
 /// The slip sensor.
 #[derive(Debug)]
@@ -49,25 +92,20 @@ pub struct SlipSensor {
 }
 
 impl SlipSensor {
-    /// Settings: `incipient_utilisation` (0.9), `latency_s` (0.005 s), `miss_probability`
-    /// (0.05, per episode), `false_alarm_rate_hz` (0.2 Hz).
-    pub fn build(s: &EffectSettings<'_>) -> Result<Self, SceneError> {
-        s.check_keys(&[
-            "incipient_utilisation",
-            "latency_s",
-            "miss_probability",
-            "false_alarm_rate_hz",
-        ])?;
-        Ok(Self {
-            incipient_utilisation: s.param("incipient_utilisation", 0.9, 0.0, 1.0)?,
-            latency_s: s.param("latency_s", 0.005, 0.0, 10.0)?,
-            miss_probability: s.param("miss_probability", 0.05, 0.0, 1.0)?,
-            false_alarm_rate_hz: s.param("false_alarm_rate_hz", 0.2, 0.0, 1e4)?,
-            rng: s.rng(),
+    /// From its settings (`incipient_utilisation` (0.9), `latency_s` (0.005 s),
+    /// `miss_probability` (0.05, per episode), `false_alarm_rate_hz` (0.2 Hz)) and its
+    /// random stream.
+    pub fn new(s: &SlipSensorSettings, rng: ChaCha8Rng) -> Self {
+        Self {
+            incipient_utilisation: s.incipient_utilisation,
+            latency_s: s.latency_s,
+            miss_probability: s.miss_probability,
+            false_alarm_rate_hz: s.false_alarm_rate_hz,
+            rng,
             missing: false,
             last_true: SlipSignal::None,
             pending: VecDeque::with_capacity(16),
-        })
+        }
     }
 
     /// The true signal for a contact at utilisation `u` [-], sliding or not.

@@ -138,7 +138,7 @@ fn a_drop_is_more_than_10_mm_or_0_2_rad() {
     // The overload scene drops; the lift is held with no drop.
     let t = scene_text("overload");
     let s = Scene::parse(&t).unwrap();
-    let out = run::run(&s, Some(&t), "constant", None).unwrap();
+    let out = run::run(&s, "constant", None).unwrap();
     assert!(out.summary.dropped);
     assert!(is_drop(
         out.summary.slip_distance_m,
@@ -146,12 +146,7 @@ fn a_drop_is_more_than_10_mm_or_0_2_rad() {
     ));
     let t = scene_text("lift_hold");
     let s = Scene::parse(&t).unwrap();
-    assert!(
-        !run::run(&s, Some(&t), "softgrip", None)
-            .unwrap()
-            .summary
-            .dropped
-    );
+    assert!(!run::run(&s, "softgrip", None).unwrap().summary.dropped);
 }
 
 fn sensor(settings: &str) -> SlipSensor {
@@ -261,14 +256,8 @@ fn an_unlisted_slip_sensor_changes_nothing() {
         let s = Scene::parse(t).unwrap();
         assert!(!s.effects.iter().any(|e| e == "slip_sensor"));
     }
-    let a = run::run(&Scene::parse(&base).unwrap(), Some(&base), "softgrip", None).unwrap();
-    let b = run::run(
-        &Scene::parse(&other).unwrap(),
-        Some(&other),
-        "softgrip",
-        None,
-    )
-    .unwrap();
+    let a = run::run(&Scene::parse(&base).unwrap(), "softgrip", None).unwrap();
+    let b = run::run(&Scene::parse(&other).unwrap(), "softgrip", None).unwrap();
     assert_eq!(bits(&a.samples), bits(&b.samples));
     assert_eq!(
         a.summary.mean_normal_force_n.to_bits(),
@@ -281,8 +270,7 @@ fn the_direct_link_equals_the_pty_link() {
     for (name, controller) in [("lift_hold", "softgrip"), ("faulty_link", "softgrip-table")] {
         let t = scene_text(name);
         let s = Scene::parse(&t).unwrap();
-        let go =
-            |link| run_with(&s, Some(&t), controller, &link, None, RunOptions::default()).unwrap();
+        let go = |link| run_with(&s, controller, &link, None, RunOptions::default()).unwrap();
         let pty = go(LinkKind::InProcess);
         let direct = go(LinkKind::Direct);
         assert_eq!(bits(&pty.samples), bits(&direct.samples), "{name}");

@@ -416,7 +416,7 @@ n_max_n = 15.0
 "#;
     let mut scene = Scene::parse(text).unwrap();
     scene.name = "very_bad_line".into();
-    let out = run(&scene, Some(text), "softgrip", None).unwrap();
+    let out = run(&scene, "softgrip", None).unwrap();
     let l = &out.summary.link;
     eprintln!("{l:?}");
     assert_eq!(

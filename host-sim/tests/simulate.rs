@@ -19,7 +19,7 @@ fn text(name: &str) -> String {
 
 fn samples(text: &str, controller: &str) -> (Vec<Sample>, host_sim::sim::record::RunSummary) {
     let scene = Scene::parse(text).unwrap();
-    let out = run(&scene, Some(text), controller, None).unwrap();
+    let out = run(&scene, controller, None).unwrap();
     (out.samples, out.summary)
 }
 
@@ -195,11 +195,8 @@ fn bad_scene_files_name_the_key_and_its_line() {
     for (t, key, line) in cases {
         let err = match Scene::parse(&t) {
             Ok(scene) => {
-                // Effect settings are checked when the pipeline is built.
-                host_sim::sim::effects::Pipeline::build(&scene, Some(&t))
-                    .map(|_| ())
-                    .unwrap_err()
-                    .to_string()
+                // Anything the parse let through is checked when the pipeline is built.
+                scene.pipeline().map(|_| ()).unwrap_err().to_string()
             }
             Err(e) => e.to_string(),
         };

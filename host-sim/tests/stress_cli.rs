@@ -11,7 +11,6 @@
 //!   truth) on thousands of mutated scene files and on random text: never a panic; every
 //!   error is one line.
 
-use host_sim::sim::effects::Pipeline;
 use host_sim::sim::run::controller_config;
 use host_sim::sim::scene::Scene;
 use host_sim::sim::truth::Truth;
@@ -632,7 +631,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
 /// error's text; panics propagate (and fail the test).
 fn build_all(text: &str) -> Result<(), String> {
     let scene = Scene::parse(text).map_err(|e| e.to_string())?;
-    let pipeline = Pipeline::build(&scene, Some(text)).map_err(|e| e.to_string())?;
+    let pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     let cfg = controller_config(&scene).map_err(|e| e.to_string())?;
     // The ground truth over the force range `run` uses (its own quadrature and tables).
     if scene.duration_s * scene.tick_hz < 1e6 {

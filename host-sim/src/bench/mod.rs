@@ -131,8 +131,8 @@ fn check_pty(family: &str, seed: u64) -> Result<(), String> {
                 truth: None,
                 untimed: true,
             };
-            let d = run::run_with(&t.scene, None, c, &LinkKind::Direct, None, opts)?.summary;
-            let p = run::run_with(&t.scene, None, c, &LinkKind::InProcess, None, opts)?.summary;
+            let d = run::run_with(&t.scene, c, &LinkKind::Direct, None, opts)?.summary;
+            let p = run::run_with(&t.scene, c, &LinkKind::InProcess, None, opts)?.summary;
             let same = d.dropped == p.dropped
                 && d.slip_events == p.slip_events
                 && d.slip_distance_m.to_bits() == p.slip_distance_m.to_bits()

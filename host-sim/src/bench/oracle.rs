@@ -8,7 +8,7 @@
 //! disturbances), which do not depend on the controller, so the oracle is computed once
 //! per trial and shared by every controller and knob value.
 
-use crate::sim::effects::{Pipeline, World};
+use crate::sim::effects::World;
 use crate::sim::scene::Scene;
 use crate::sim::task;
 use crate::sim::truth::Truth;
@@ -77,7 +77,7 @@ pub fn mean_oracle_force_n(
     n_min_n: f64,
     n_max_n: f64,
 ) -> Result<f64, String> {
-    let mut pipeline = Pipeline::build(scene, None).map_err(|e| e.to_string())?;
+    let mut pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     let dt = 1.0 / scene.tick_hz;
     let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
     let mut w = World {

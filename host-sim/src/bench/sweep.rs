@@ -133,7 +133,7 @@ pub fn run_trial(
         untimed: true,
     };
     let one = |s: &Scene, controller: &str, tag: &str| -> Result<RunRow, String> {
-        let out = run::run_with(s, None, controller, link, None, options)?;
+        let out = run::run_with(s, controller, link, None, options)?;
         if let Some(dir) = trace {
             let path = dir.join(format!("{:04}-{controller}-{tag}.csv", trial.index));
             report::write_csv(&path, &out.samples).map_err(|e| e.to_string())?;

@@ -2,6 +2,7 @@
 
 pub mod controllers;
 pub mod effects;
+pub mod finger;
 pub mod record;
 pub mod report;
 pub mod run;

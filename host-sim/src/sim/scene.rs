@@ -49,6 +49,7 @@
 
 use crate::input::{short, short_num, SCENE_CAP_BYTES};
 use crate::sim::effects::{self, EffectSettings, Settings, NAMES as EFFECT_NAMES};
+pub use crate::sim::finger::Finger;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -99,49 +100,6 @@ pub struct Scene {
 
 fn default_tick_hz() -> f64 {
     1000.0
-}
-
-/// The fingertip and its contact.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Finger {
-    /// `rect` (hemicylinder) or `disc` (hemisphere).
-    #[serde(default = "default_shape")]
-    pub shape: String,
-    /// Pressure exponent `k ≥ 1`.
-    #[serde(default = "default_k")]
-    pub k: f64,
-    /// Friction coefficient.
-    pub mu: f64,
-    /// `c` in `a = c·N^γ` [m/N^γ].
-    pub c: f64,
-    /// `γ` in `a = c·N^γ`.
-    pub gamma: f64,
-    /// Half-length `l` of the rectangular patch [m].
-    #[serde(default = "default_half_length")]
-    pub half_length_m: f64,
-    /// Young's modulus of the fingertip [Pa] (partial slip).
-    #[serde(default = "default_young")]
-    pub young_modulus_pa: f64,
-    /// Poisson's ratio (partial slip).
-    #[serde(default = "default_poisson")]
-    pub poisson: f64,
-}
-
-fn default_shape() -> String {
-    "rect".into()
-}
-fn default_k() -> f64 {
-    2.0
-}
-fn default_half_length() -> f64 {
-    0.01
-}
-fn default_young() -> f64 {
-    3e5
-}
-fn default_poisson() -> f64 {
-    0.45
 }
 
 /// The held object.
@@ -269,15 +227,17 @@ pub fn line_of(text: &str, table: &str, key: &str) -> Option<usize> {
 }
 
 impl Scene {
-    /// Reads and checks a scene file. Errors name the file, the key and its line.
-    pub fn load(path: &Path) -> Result<Self, SceneError> {
-        Self::load_with_text(path).map(|(scene, _)| scene)
+    /// The scene's effects, built: [`effects::Pipeline::new`] from its typed settings
+    /// ([`Scene::effect_settings`], read and checked when the scene was parsed), seed and
+    /// finger.
+    pub fn pipeline(&self) -> Result<effects::Pipeline, SceneError> {
+        effects::Pipeline::new(&self.effect_settings, self.seed, &self.finger).map_err(SceneError)
     }
 
-    /// [`Scene::load`], also giving the file's text. The file is read with a cap of
-    /// [`SCENE_CAP_BYTES`] (`crate::input`): a larger or endless one (`/dev/zero`) is
-    /// refused after reading at most the cap.
-    pub fn load_with_text(path: &Path) -> Result<(Self, String), SceneError> {
+    /// Reads and checks a scene file. Errors name the file, the key and its line. The
+    /// file is read with a cap of [`SCENE_CAP_BYTES`] (`crate::input`): a larger or
+    /// endless one (`/dev/zero`) is refused after reading at most the cap.
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
         let shown = short(&path.display().to_string());
         let text = crate::input::read_capped_text(path, "scene", SCENE_CAP_BYTES)
             .map_err(|e| SceneError(e.message))?;
@@ -287,7 +247,7 @@ impl Scene {
                 .file_stem()
                 .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         }
-        Ok((scene, text))
+        Ok(scene)
     }
 
     /// Parses and checks scene text.

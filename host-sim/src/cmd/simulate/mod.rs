@@ -221,10 +221,11 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     }
     let mut loaded = Vec::new();
     for p in &paths {
-        let (scene, text) = Scene::load_with_text(p).map_err(|e| CliError::Usage(e.to_string()))?;
+        let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
         // Settings are checked here, before any run, so a bad one is a usage error.
         let shown = short(&p.display().to_string());
-        crate::sim::effects::Pipeline::build(&scene, Some(&text))
+        scene
+            .pipeline()
             .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
         let cfg = crate::sim::run::controller_config(&scene)
             .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
@@ -242,17 +243,17 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
             })?;
         }
-        loaded.push((scene, text));
+        loaded.push(scene);
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
     let total: u64 = loaded
         .iter()
-        .map(|(s, _)| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
+        .map(|s| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
         .sum();
     let bar = crate::progress::bar(total, "ticks", false);
     let mut all: Vec<RunSummary> = Vec::new();
-    for (scene, text) in &loaded {
+    for scene in &loaded {
         let mut runs = Vec::new();
         for c in &names {
             bar.set_message(format!("{} / {c}", scene.name));
@@ -262,7 +263,6 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
             let out = run_streaming(
                 scene,
-                Some(text),
                 c,
                 &link,
                 Some(&bar),

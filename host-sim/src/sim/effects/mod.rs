@@ -36,7 +36,7 @@ pub mod settings;
 pub mod skewed_pressure;
 pub mod slip_sensor;
 
-use crate::sim::scene::{Finger, Scene, SceneError};
+use crate::sim::finger::Finger;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 pub use settings::{EffectSettings, Range, Settings, Source, NAMES};
@@ -185,14 +185,6 @@ impl Pipeline {
             cost,
             timed: true,
         })
-    }
-
-    /// The pipeline of `scene`: [`Pipeline::new`] from its
-    /// [`effect_settings`](Scene::effect_settings), seed and finger. The settings were
-    /// read and checked when the scene was parsed (bad ones are reported there, with their
-    /// line), so `_text`, the scene file, is no longer needed; it is kept for the callers.
-    pub fn build(scene: &Scene, _text: Option<&str>) -> Result<Self, SceneError> {
-        Self::new(&scene.effect_settings, scene.seed, &scene.finger).map_err(SceneError)
     }
 
     /// The names of the built effects, in order.

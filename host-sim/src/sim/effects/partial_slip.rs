@@ -7,7 +7,7 @@
 
 use super::settings::{Range, Settings};
 use super::{Effect, World};
-use crate::sim::scene::Finger;
+use crate::sim::finger::Finger;
 use serde::Deserialize;
 use softgrip::partial_slip::{deflection_m, Elasticity};
 

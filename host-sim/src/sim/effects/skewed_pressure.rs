@@ -5,7 +5,7 @@
 
 use super::settings::{Range, Settings};
 use super::Effect;
-use crate::sim::scene::Finger;
+use crate::sim::finger::Finger;
 use serde::Deserialize;
 use softgrip::controller::SkewParams;
 

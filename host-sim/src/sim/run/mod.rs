@@ -31,7 +31,7 @@ mod config;
 pub use config::*;
 
 use crate::sim::controllers::{self, LinkKind};
-use crate::sim::effects::{LinkFate, Pipeline, World};
+use crate::sim::effects::{LinkFate, World};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::scene::Scene;
 use crate::sim::task;
@@ -91,24 +91,21 @@ pub struct RunOutput {
 /// Runs `scene` against the controller `controller`.
 pub fn run(
     scene: &Scene,
-    text: Option<&str>,
     controller: &str,
     progress: Option<&ProgressBar>,
 ) -> Result<RunOutput, String> {
-    run_on(scene, text, controller, &LinkKind::InProcess, progress)
+    run_on(scene, controller, &LinkKind::InProcess, progress)
 }
 
 /// Runs `scene` against `controller`, with softgrip on the link `link`.
 pub fn run_on(
     scene: &Scene,
-    text: Option<&str>,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
 ) -> Result<RunOutput, String> {
     run_with(
         scene,
-        text,
         controller,
         link_kind,
         progress,
@@ -120,7 +117,7 @@ pub fn run_on(
 /// scene's controller settings), for sharing between runs through [`RunOptions::truth`].
 pub fn build_truth(scene: &Scene) -> Result<Truth, String> {
     let cfg = controller_config(scene).map_err(|e| e.to_string())?;
-    let pipeline = Pipeline::build(scene, None).map_err(|e| e.to_string())?;
+    let pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     Truth::build(
         scene,
         pipeline.true_skew(),
@@ -149,19 +146,17 @@ impl SampleSink for Vec<Sample> {
 /// sink instead.
 pub fn run_with(
     scene: &Scene,
-    text: Option<&str>,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
     options: RunOptions<'_>,
 ) -> Result<RunOutput, String> {
     if options.skip_samples {
-        return run_into(scene, text, controller, link_kind, progress, options, None);
+        return run_into(scene, controller, link_kind, progress, options, None);
     }
     let mut samples = Vec::new();
     let mut out = run_into(
         scene,
-        text,
         controller,
         link_kind,
         progress,
@@ -178,7 +173,6 @@ pub fn run_with(
 /// `options.skip_samples` is ignored.
 pub fn run_streaming(
     scene: &Scene,
-    text: Option<&str>,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
@@ -189,22 +183,13 @@ pub fn run_streaming(
         skip_samples: false,
         ..options
     };
-    run_into(
-        scene,
-        text,
-        controller,
-        link_kind,
-        progress,
-        options,
-        Some(sink),
-    )
+    run_into(scene, controller, link_kind, progress, options, Some(sink))
 }
 
 /// The run: samples go to `sink` if there is one; the surface is computed unless
 /// `options.skip_samples`.
 fn run_into(
     scene: &Scene,
-    text: Option<&str>,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
@@ -217,7 +202,7 @@ fn run_into(
         .controller
         .constant_force_n
         .unwrap_or(cfg.fault_force_n);
-    let mut pipeline = Pipeline::build(scene, text).map_err(|e| e.to_string())?;
+    let mut pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     pipeline.set_timed(!options.untimed);
     let untimed = options.untimed;
     let has_actuator = pipeline.names().iter().any(|n| n == "actuator");

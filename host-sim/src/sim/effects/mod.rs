@@ -7,9 +7,11 @@
 //! `SensorNoiseSettings`, ...) of its `[effect.NAME]` keys with their defaults and
 //! ranges ([`Settings`]); [`EffectSettings`] is one of them, and [`settings`] lists the
 //! effects ([`NAMES`]). The scene reads and checks every listed effect's settings once,
-//! when it is parsed ([`Scene::effect_settings`](crate::sim::scene::Scene::effect_settings)); [`build`] then makes each effect from
-//! its own struct and what it needs besides (its random stream, or the fingertip). An
-//! effect never sees the [`Scene`](crate::sim::scene::Scene) or its TOML.
+//! when it is parsed
+//! ([`Scene::effect_settings`](crate::sim::scene::Scene::effect_settings)); [`build`]
+//! then makes each effect from its own struct and what it needs besides (its random
+//! stream, or the fingertip). An effect never sees the
+//! [`Scene`](crate::sim::scene::Scene) or its TOML.
 //!
 //! An effect hooks into one or more stages of a plant step, in this order:
 //! 1. [`Effect::load`]: forces and moments on the object (gravity, disturbances);

@@ -39,7 +39,6 @@ const OVER_BUDGET: &[&str] = &[
     "default: tick, ellipse",
     "default: tick, table",
     "default: start-up, table",
-    "prebuilt-tables: static RAM + stack, table",
     "prebuilt-tables: tick, table",
 ];
 

@@ -115,12 +115,22 @@ impl CostClock for NoClock {
 
 /// Where a device's controller comes from.
 ///
+/// The controller is built into a slot the device owns (`slot`), in place where the
+/// source can: a controller is about 3.3 KB, and every copy of it on its way into the
+/// device would be stack a microcontroller pays for. The device only ticks the slot after
+/// an `Ok`; after an error the slot may hold anything. A source outside this crate can
+/// simply assign a controller it built: `*slot = Controller::new(cfg)?`.
+///
 /// The error is the wire form itself (about 130 bytes, two fixed strings): there is no
 /// heap to box it in, and it goes straight into the `Configured` reply.
 #[allow(clippy::result_large_err)]
 pub trait ControllerSource<M: TickMath<f32>> {
-    /// The controller for `cfg`, or the reason it cannot be had.
-    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError>;
+    /// Builds the controller for `cfg` into `slot`, or says why it cannot be had.
+    fn build_into(
+        &self,
+        cfg: ControllerConfig,
+        slot: &mut Controller<f32, M>,
+    ) -> Result<(), WireConfigError>;
 }
 
 /// Precomputation at start-up, in precision `P`.
@@ -129,8 +139,12 @@ pub struct Precompute<P = f32>(PhantomData<P>);
 
 #[allow(clippy::result_large_err)]
 impl<M: TickMath<f32>, P: Real> ControllerSource<M> for Precompute<P> {
-    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError> {
-        Controller::<f32, M>::new_precomputed_in::<P>(cfg)
+    fn build_into(
+        &self,
+        cfg: ControllerConfig,
+        slot: &mut Controller<f32, M>,
+    ) -> Result<(), WireConfigError> {
+        slot.rebuild_precomputed_in::<P>(cfg)
             .map_err(|e| WireConfigError::from_config_error(&e))
     }
 }
@@ -147,19 +161,18 @@ pub struct Prebuilt {
 
 #[allow(clippy::result_large_err)]
 impl<M: TickMath<f32>> ControllerSource<M> for Prebuilt {
-    // Out of line, the copies of the new controller on its way out of `from_tables` take
-    // less stack: the prebuilt firmware's peak while configuring falls from 19 832 to
-    // 17 656 B (host-sim/tests/firmware_costs.rs). The same for `Precompute` costs 700 B
-    // more, so that one stays inline.
-    #[inline(never)]
-    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32, M>, WireConfigError> {
+    fn build_into(
+        &self,
+        cfg: ControllerConfig,
+        slot: &mut Controller<f32, M>,
+    ) -> Result<(), WireConfigError> {
         if cfg != self.config {
             return Err(WireConfigError::text(
                 "tables",
                 "the prebuilt tables were made for another configuration",
             ));
         }
-        Controller::from_tables(cfg, &self.tables)
+        slot.rebuild_from_tables(cfg, &self.tables)
             .map_err(|e| WireConfigError::from_tables_error(&e))
     }
 }
@@ -167,7 +180,10 @@ impl<M: TickMath<f32>> ControllerSource<M> for Prebuilt {
 /// The device: controller, decoder and counters. See the module docs.
 #[derive(Debug)]
 pub struct Device<M = Libm, S = Precompute<f32>> {
-    controller: Option<Controller<f32, M>>,
+    // Two slots: a new configuration is built into the one not running, so a refused
+    // configuration leaves the running controller untouched, and neither is ever copied.
+    slots: [Option<Controller<f32, M>>; 2],
+    active: Option<usize>,
     source: S,
     stack_probe: fn() -> u32,
     shutdown: Option<u8>,
@@ -196,6 +212,7 @@ fn no_stack_probe() -> u32 {
 impl<M: TickMath<f32>, P: Real> Device<M, Precompute<P>> {
     /// An unconfigured device that precomputes its tables in `P`: it answers sensor
     /// frames with [`Reply::NotConfigured`] until a configuration is accepted.
+    #[inline(always)]
     pub fn new() -> Self {
         Self::with_source(Precompute(PhantomData))
     }
@@ -203,9 +220,11 @@ impl<M: TickMath<f32>, P: Real> Device<M, Precompute<P>> {
 
 impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
     /// An unconfigured device whose controllers come from `source`.
+    #[inline(always)]
     pub fn with_source(source: S) -> Self {
         Self {
-            controller: None,
+            slots: [None, None],
+            active: None,
             source,
             stack_probe: no_stack_probe,
             shutdown: None,
@@ -224,9 +243,16 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
 
     /// Reports the stack's high-water mark in [`Stats::stack_peak_bytes`] with `probe`
     /// (the firmware paints its stack at start-up and scans it).
+    #[inline(always)]
     pub fn with_stack_probe(mut self, probe: fn() -> u32) -> Self {
-        self.stack_probe = probe;
+        self.set_stack_probe(probe);
         self
+    }
+
+    /// [`Device::with_stack_probe`] on a device in place (a device is several KB: a
+    /// microcontroller's start-up should not move it).
+    pub fn set_stack_probe(&mut self, probe: fn() -> u32) {
+        self.stack_probe = probe;
     }
 
     /// The exit code of a [`Request::Shutdown`], once one has been answered.
@@ -236,7 +262,11 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
 
     /// The controller, once configured.
     pub fn controller(&self) -> Option<&Controller<f32, M>> {
-        self.controller.as_ref()
+        self.active.and_then(|i| self.slots.get(i)?.as_ref())
+    }
+
+    fn controller_mut(&mut self) -> Option<&mut Controller<f32, M>> {
+        self.active.and_then(|i| self.slots.get_mut(i)?.as_mut())
     }
 
     /// The counters, as [`Request::GetStats`] reports them.
@@ -254,16 +284,10 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             startup_cost: self.startup_cost,
             stack_peak_bytes: (self.stack_probe)(),
             cost_unit: C::UNIT,
-            stale_frames: self
-                .controller
-                .as_ref()
-                .map_or(0, Controller::time_rejections),
+            stale_frames: self.controller().map_or(0, Controller::time_rejections),
             idle_ticks: self.idle_ticks,
-            command_n: self.controller.as_ref().map_or(0.0, Controller::command_n),
-            fault_active: self
-                .controller
-                .as_ref()
-                .is_some_and(Controller::fault_active),
+            command_n: self.controller().map_or(0.0, Controller::command_n),
+            fault_active: self.controller().is_some_and(Controller::fault_active),
         }
     }
 
@@ -281,7 +305,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
 
     /// The tick period of the running configuration [s], `None` before one is accepted.
     pub fn tick_period_s(&self) -> Option<f64> {
-        self.controller.as_ref().map(|c| c.config().tick_period_s)
+        self.controller().map(|c| c.config().tick_period_s)
     }
 
     /// One tick period passed with no sensor frame: ticks the controller with no
@@ -290,7 +314,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
     /// fault target. Counted in [`Stats::idle_ticks`]. Returns the command [N], or `None`
     /// (and does nothing) before a configuration. Cost: a few comparisons.
     pub fn idle_tick<A: ForceActuator>(&mut self, actuator: &mut A) -> Option<f32> {
-        let ctl = self.controller.as_mut()?;
+        let ctl = self.controller_mut()?;
         let out = ctl.idle();
         actuator.set_force_n(out.command_n);
         self.idle_ticks = self.idle_ticks.saturating_add(1);
@@ -329,9 +353,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 }
             }
             Request::Configure(_) | Request::Sensor(_) if self.incompatible => incompatible,
-            Request::Configure(cfg)
-                if self.controller.as_ref().is_some_and(|c| *c.config() == cfg) =>
-            {
+            Request::Configure(cfg) if self.controller().is_some_and(|c| *c.config() == cfg) => {
                 // The same configuration again: nothing to rebuild, nothing changes.
                 Reply::Configured(Ok(()))
             }
@@ -358,9 +380,10 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         }
     }
 
-    /// Builds and installs the controller for `cfg` (a new configuration). Kept out of
-    /// line: inlined into [`Device::poll`], its temporaries (a controller or two, about
-    /// 3 KB each) would sit in the loop's stack frame for good, not only while configuring.
+    /// Builds the controller for `cfg` (a new configuration) into the slot that is not
+    /// running and, if it is accepted, hands the running grasp over to it. Out of line:
+    /// inlined into [`Device::poll`], the precomputation's temporaries would sit in the
+    /// loop's stack frame for good, not only while configuring.
     #[inline(never)]
     fn configure<A: ForceActuator, C: CostClock>(
         &mut self,
@@ -368,17 +391,33 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         actuator: &mut A,
         clock: &mut C,
     ) -> Reply {
+        let next = match self.active {
+            Some(0) => 1,
+            _ => 0,
+        };
+        let [first, second] = &mut self.slots;
+        let (slot, running) = if next == 0 {
+            (first, second)
+        } else {
+            (second, first)
+        };
         let start = clock.now();
-        let built = self.source.controller(cfg);
+        if slot.is_none() {
+            Controller::blank_into(slot);
+        }
+        let Some(slot) = slot.as_mut() else {
+            return Reply::Configured(Err(WireConfigError::text("device", "no controller slot")));
+        };
+        let built = self.source.build_into(cfg, slot);
         let cost = clock.now().wrapping_sub(start);
         match built {
-            Ok(mut ctl) => {
+            Ok(()) => {
                 // A running grasp is handed over, not released.
-                if let Some(previous) = self.controller.as_ref() {
-                    ctl.take_over_from(previous);
+                if let Some(running) = running.as_ref().filter(|_| self.active.is_some()) {
+                    slot.take_over_from(running);
                 }
-                actuator.set_force_n(ctl.command_n());
-                self.controller = Some(ctl);
+                actuator.set_force_n(slot.command_n());
+                self.active = Some(next);
                 self.startup_cost = cost;
                 #[cfg(feature = "defmt")]
                 defmt::info!("configured: start-up cost {=u32}", cost);
@@ -398,7 +437,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         actuator: &mut A,
         clock: &mut C,
     ) -> Reply {
-        let Some(ctl) = self.controller.as_mut() else {
+        let Some(ctl) = self.controller_mut() else {
             return Reply::NotConfigured { seq: frame.seq };
         };
         let m = Measurement {

@@ -68,12 +68,18 @@ impl Pool {
 
 #[allow(clippy::result_large_err)]
 impl ControllerSource<Libm> for Pool {
-    fn controller(&self, cfg: ControllerConfig) -> Result<Controller<f32>, WireConfigError> {
-        self.0
+    fn build_into(
+        &self,
+        cfg: ControllerConfig,
+        slot: &mut Controller<f32>,
+    ) -> Result<(), WireConfigError> {
+        let c = self
+            .0
             .iter()
             .find(|c| *c.config() == cfg)
-            .cloned()
-            .ok_or_else(|| WireConfigError::new("pool", &"not in the pool"))
+            .ok_or_else(|| WireConfigError::new("pool", &"not in the pool"))?;
+        slot.clone_from(c);
+        Ok(())
     }
 }
 

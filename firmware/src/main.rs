@@ -78,13 +78,13 @@ fn main() -> ! {
     let mut clock = tim2::InstructionCounter::start();
     let mut serial = usart::Usart1::init();
     #[cfg(not(feature = "prebuilt-tables"))]
-    let device = Device::<Math, softgrip::device::Precompute<Precompute>>::new();
+    let mut device = Device::<Math, softgrip::device::Precompute<Precompute>>::new();
     #[cfg(feature = "prebuilt-tables")]
-    let device = Device::<Math, _>::with_source(softgrip::device::Prebuilt {
+    let mut device = Device::<Math, _>::with_source(softgrip::device::Prebuilt {
         config: prebuilt::CONFIG,
         tables: prebuilt::tables(),
     });
-    let mut device = device.with_stack_probe(stack::peak_bytes);
+    device.set_stack_probe(stack::peak_bytes);
     let mut watch = SilenceWatch::new(tim2::TIMER_HZ);
     let code = loop {
         let ready = match embedded_io::ReadReady::read_ready(&mut serial) {

@@ -41,7 +41,6 @@ const OVER_BUDGET: &[&str] = &[
     "default: tick, ellipse",
     "default: tick, table",
     "default: start-up, table",
-    "prebuilt-tables: static RAM + stack, table",
     "prebuilt-tables: tick, table",
 ];
 

@@ -13,6 +13,18 @@ impl<T: Real> Capacity<T> {
     /// Precomputes the grid for `cfg` (already validated by
     /// [`ControllerConfig::validate`]), computing in `P` and storing in `T`.
     pub fn build<P: Real>(cfg: &ControllerConfig) -> Result<Self, ConfigError> {
+        let mut cap = Self::blank();
+        cap.build_into::<P>(cfg)?;
+        Ok(cap)
+    }
+
+    /// [`Capacity::build`] into `self`, in place (no copy of the grid on the stack: the
+    /// device builds its controllers this way). On an error `self` is left half-built
+    /// and must be built again before use.
+    pub(crate) fn build_into<P: Real>(
+        &mut self,
+        cfg: &ControllerConfig,
+    ) -> Result<(), ConfigError> {
         let nodes = usize::from(cfg.force_nodes);
         if !(2..=MAX_FORCE_NODES).contains(&nodes) {
             return Err(ConfigError::Capacity {
@@ -37,19 +49,11 @@ impl<T: Real> Capacity<T> {
             model.with_aspect(aspect_of(a))?.pitch()
         };
 
-        let mut cap = Self {
-            mode: cfg.mode,
-            nodes,
-            force_n: [T::zero(); MAX_FORCE_NODES],
-            arm_m: [T::zero(); MAX_FORCE_NODES],
-            inv_arm_per_m: [T::zero(); MAX_FORCE_NODES],
-            inv_width_per_n: [T::zero(); MAX_FORCE_NODES],
-            aspect_pos: [T::zero(); MAX_FORCE_NODES],
-            shapes: 1,
-            inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
-            arm_linear_below: cfg.gamma > 0.0,
-            demand_scale: [T::one(); 2],
-        };
+        self.clear();
+        self.mode = cfg.mode;
+        self.nodes = nodes;
+        self.arm_linear_below = cfg.gamma > 0.0;
+        let cap = self;
         let ln_n_min = P::of(cfg.n_min_n).libm_ln();
         let ln_step = (P::of(cfg.n_max_n).libm_ln() - ln_n_min) / P::of_usize(nodes - 1);
         for j in 0..nodes {
@@ -92,14 +96,14 @@ impl<T: Real> Capacity<T> {
         // The grid as stored in `T` must itself be valid (increasing finite forces,
         // positive finite arms and radii): a configuration valid in f64 can round to
         // zeros or infinities in f32.
-        if Self::from_tables(cfg, &cap.tables()).is_err() {
+        if Self::check_tables(cfg, &cap.tables()).is_err() {
             return Err(ConfigError::OutOfRange {
                 param: "n_min_n",
                 value: cfg.n_min_n,
                 expected: "forces and contact sizes the tick's precision can represent",
             });
         }
-        Ok(cap)
+        Ok(())
     }
 
     fn build_shapes<P: Real>(

@@ -108,6 +108,46 @@ fn split<T: Real>(x: T, last: usize) -> (usize, T) {
 }
 
 impl<T: Real> Capacity<T> {
+    /// An empty grid (two nodes at 0 N, no arms): a slot to build into
+    /// ([`Capacity::build_into`], [`Capacity::from_tables`]), never solved as it is.
+    #[inline(always)]
+    pub(crate) fn blank() -> Self {
+        Self {
+            mode: Mode::Ellipse,
+            nodes: 2,
+            force_n: [T::zero(); MAX_FORCE_NODES],
+            arm_m: [T::zero(); MAX_FORCE_NODES],
+            inv_arm_per_m: [T::zero(); MAX_FORCE_NODES],
+            inv_width_per_n: [T::zero(); MAX_FORCE_NODES],
+            aspect_pos: [T::zero(); MAX_FORCE_NODES],
+            shapes: 1,
+            inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
+            arm_linear_below: false,
+            demand_scale: [T::one(); 2],
+        }
+    }
+
+    /// Back to [`Capacity::blank`], in place.
+    pub(crate) fn clear(&mut self) {
+        self.mode = Mode::Ellipse;
+        self.nodes = 2;
+        for a in [
+            &mut self.force_n,
+            &mut self.arm_m,
+            &mut self.inv_arm_per_m,
+            &mut self.inv_width_per_n,
+            &mut self.aspect_pos,
+        ] {
+            a.fill(T::zero());
+        }
+        for row in self.inv_radius.iter_mut() {
+            row.fill(T::zero());
+        }
+        self.shapes = 1;
+        self.arm_linear_below = false;
+        self.demand_scale = [T::one(); 2];
+    }
+
     /// The mode the grid serves.
     pub fn mode(&self) -> Mode {
         self.mode

@@ -113,6 +113,48 @@ impl<T: Real> Capacity<T> {
     /// the configuration's `N_min` and `N_max` (as `T`). The result ticks bit for bit like
     /// the grid the tables were exported from.
     pub fn from_tables(cfg: &ControllerConfig, t: &Tables<'_, T>) -> Result<Self, TableError> {
+        let mut cap = Self::blank();
+        cap.fill_from_tables(cfg, t)?;
+        Ok(cap)
+    }
+
+    /// [`Capacity::from_tables`] into `self`, in place (no copy of the grid on the stack:
+    /// the device builds its controllers this way). On an error `self` is unchanged.
+    pub(crate) fn fill_from_tables(
+        &mut self,
+        cfg: &ControllerConfig,
+        t: &Tables<'_, T>,
+    ) -> Result<(), TableError> {
+        let shapes = Self::check_tables(cfg, t)?;
+        self.clear();
+        self.mode = cfg.mode;
+        self.nodes = t.force_n.len();
+        self.shapes = shapes.max(1);
+        self.arm_linear_below = cfg.gamma > 0.0;
+        self.demand_scale = t.demand_scale;
+        for (dst, src) in [
+            (&mut self.force_n, t.force_n),
+            (&mut self.arm_m, t.arm_m),
+            (&mut self.inv_arm_per_m, t.inv_arm_per_m),
+            (&mut self.aspect_pos, t.aspect_pos),
+        ] {
+            for (d, s) in dst.iter_mut().zip(src) {
+                *d = *s;
+            }
+        }
+        for (d, s) in self.inv_radius.iter_mut().zip(t.inv_radius) {
+            *d = *s;
+        }
+        self.fill_inv_width();
+        Ok(())
+    }
+
+    /// The checks of [`Capacity::from_tables`], without building anything; returns the
+    /// number of table-mode rows (0 in ellipse mode).
+    pub(crate) fn check_tables(
+        cfg: &ControllerConfig,
+        t: &Tables<'_, T>,
+    ) -> Result<usize, TableError> {
         let nodes = usize::from(cfg.force_nodes);
         let size = |what, len: usize, expected: usize| {
             if len == expected {
@@ -228,34 +270,7 @@ impl<T: Real> Capacity<T> {
         {
             return bad("demand_scale", i);
         }
-        let mut cap = Self {
-            mode: cfg.mode,
-            nodes,
-            force_n: [T::zero(); MAX_FORCE_NODES],
-            arm_m: [T::zero(); MAX_FORCE_NODES],
-            inv_arm_per_m: [T::zero(); MAX_FORCE_NODES],
-            inv_width_per_n: [T::zero(); MAX_FORCE_NODES],
-            aspect_pos: [T::zero(); MAX_FORCE_NODES],
-            shapes: shapes.max(1),
-            inv_radius: [[T::zero(); DIRECTIONS]; MAX_ASPECTS],
-            arm_linear_below: cfg.gamma > 0.0,
-            demand_scale: t.demand_scale,
-        };
-        for (dst, src) in [
-            (&mut cap.force_n, t.force_n),
-            (&mut cap.arm_m, t.arm_m),
-            (&mut cap.inv_arm_per_m, t.inv_arm_per_m),
-            (&mut cap.aspect_pos, t.aspect_pos),
-        ] {
-            for (d, s) in dst.iter_mut().zip(src) {
-                *d = *s;
-            }
-        }
-        for (d, s) in cap.inv_radius.iter_mut().zip(t.inv_radius) {
-            *d = *s;
-        }
-        cap.fill_inv_width();
-        Ok(cap)
+        Ok(shapes)
     }
 
     pub(super) fn fill_inv_width(&mut self) {

@@ -15,6 +15,7 @@
     )
 )]
 
+mod checksum;
 pub mod contact;
 pub mod controller;
 pub mod device;

@@ -23,7 +23,7 @@ use crate::controller::capacity::{Tables, DIRECTIONS, MAX_ASPECTS, MAX_FORCE_NOD
 use crate::controller::config::ControllerConfig;
 use crate::controller::tick::{Controller, FromTablesError};
 use crate::controller::TickMath;
-use crate::protocol::CRC;
+use crate::checksum::CRC;
 use heapless::Vec;
 use serde::{Deserialize, Serialize};
 

@@ -5,16 +5,9 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crc::Crc;
+pub use crate::checksum::CRC;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
-
-/// The CRC of every frame: CRC-32/ISCSI (Castagnoli; poly `0x1EDC6F41`, reflected,
-/// init and xorout `0xFFFFFFFF`, check value `0xE3069283`).
-///
-/// A `static` so its 1 KiB lookup table exists once in flash instead of being rebuilt on
-/// the stack at each use.
-pub static CRC: Crc<u32> = Crc::<u32>::new(&crc::CRC_32_ISCSI);
 
 /// Bytes of CRC after the message: the CRC-32 in little-endian order.
 pub const CRC_LEN: usize = 4;

@@ -1,14 +1,20 @@
 //! Argument types more than one command takes.
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
+use softgrip::controller::FingerShape;
 
-/// Patch shape on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ShapeArg {
-    /// Hemicylindrical fingertip: rectangular patch `[-l, l] × [-a, a]`.
-    Rect,
-    /// Hemispherical fingertip: disc of radius `a`.
-    Disc,
+/// `--shape`: the core's [`FingerShape`] by its name, with the valid names, their meaning
+/// and clap's suggestions in errors and `--help`.
+pub fn shape_parser() -> impl TypedValueParser<Value = FingerShape> {
+    PossibleValuesParser::new(FingerShape::ALL.map(|s| {
+        PossibleValue::new(s.name()).help(match s {
+            FingerShape::Rect => "Hemicylindrical fingertip: rectangular patch `[-l, l] × [-a, a]`",
+            FingerShape::Disc => "Hemispherical fingertip: disc of radius `a`",
+        })
+    }))
+    // Only the names above get here.
+    .map(|name| FingerShape::from_name(&name).unwrap_or(FingerShape::Rect))
 }
 
 /// Arithmetic of a command's computation: the sweep (`fls`), the grid and solver
@@ -27,8 +33,8 @@ pub enum Precision {
 #[derive(Debug, Clone, Copy, Args)]
 pub struct PatchArgs {
     /// Patch shape.
-    #[arg(long, value_enum, default_value_t = ShapeArg::Rect)]
-    pub shape: ShapeArg,
+    #[arg(long, value_parser = shape_parser(), default_value = "rect")]
+    pub shape: FingerShape,
     /// Pressure exponent k >= 1 (`inf` for uniform pressure).
     #[arg(long, default_value_t = 2.0)]
     pub k: f64,

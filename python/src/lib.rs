@@ -79,15 +79,13 @@ fn finite(py: Python<'_>, name: &str, v: f64) -> PyResult<f64> {
 }
 
 fn shape_of(py: Python<'_>, s: &str) -> PyResult<FingerShape> {
-    match s {
-        "rect" => Ok(FingerShape::Rect),
-        "disc" => Ok(FingerShape::Disc),
-        other => Err(bad(
+    FingerShape::from_name(s).ok_or_else(|| {
+        bad(
             py,
             "shape",
-            format!("shape: {other:?} is not a shape, expected \"rect\" or \"disc\""),
-        )),
-    }
+            format!("shape: {s:?} is not a shape, expected \"rect\" or \"disc\""),
+        )
+    })
 }
 
 fn mode_of(py: Python<'_>, s: &str) -> PyResult<Mode> {

@@ -19,11 +19,11 @@
 //! [`BlobError`] variant. Cost: one CRC pass and one decode, no allocation; a [`Blob`]
 //! holds about 3.4 KB.
 
+use crate::checksum::CRC;
 use crate::controller::capacity::{Tables, DIRECTIONS, MAX_ASPECTS, MAX_FORCE_NODES};
 use crate::controller::config::ControllerConfig;
 use crate::controller::tick::{Controller, FromTablesError};
 use crate::controller::TickMath;
-use crate::checksum::CRC;
 use heapless::Vec;
 use serde::{Deserialize, Serialize};
 

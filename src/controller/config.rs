@@ -5,8 +5,12 @@ use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
 use serde::{Deserialize, Serialize};
 
-/// Which fingertip the contact belongs to.
+/// Which fingertip the contact belongs to: the one shape type of the crate and its tools
+/// (the limit surface's [`Shape`] is this plus the aspect ratio, see
+/// [`ControllerConfig::fls_shape`]). Text formats (scene files, the command line) spell it
+/// by [`FingerShape::name`]; the wire (postcard) by its variant index.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum FingerShape {
     /// Hemicylinder: the rectangular patch `[-l, l] × [-a, a]` (the paper's case).
     Rect,
@@ -15,12 +19,20 @@ pub enum FingerShape {
 }
 
 impl FingerShape {
+    /// Every shape, in declaration order.
+    pub const ALL: [FingerShape; 2] = [FingerShape::Rect, FingerShape::Disc];
+
     /// The name the command line and scene files use.
     pub fn name(self) -> &'static str {
         match self {
             FingerShape::Rect => "rect",
             FingerShape::Disc => "disc",
         }
+    }
+
+    /// The shape called `name` ([`FingerShape::name`]), if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
     }
 }
 

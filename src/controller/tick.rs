@@ -1,6 +1,6 @@
 //! The controller: validated once, then one total function per tick.
 
-use crate::controller::capacity::{Capacity, Solution, TableError, Tables};
+use crate::controller::capacity::{Capacity, Solution, TableError};
 use crate::controller::config::ControllerConfig;
 use crate::controller::lead::Lead;
 use crate::controller::math::{Libm, TickMath};
@@ -9,6 +9,8 @@ use crate::controller::status::Status;
 use crate::error::ConfigError;
 use crate::real::Real;
 use core::marker::PhantomData;
+
+mod setup;
 
 /// Why [`Controller::from_tables`] refused.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,17 +77,6 @@ pub struct TickOutput<T> {
 /// Frames in a row, each plausibly newer than the one before, that re-anchor the
 /// controller's clock when they all disagree with its anchor (see [`Controller`], "Time").
 pub const RESYNC_FRAMES: u8 = 3;
-
-/// The largest plausible step between two good timestamps [µs]: 1 s, or four tick
-/// periods if longer.
-fn max_step_us(tick_period_s: f64) -> u64 {
-    let us = libm::ceil((tick_period_s * 4.0).max(1.0) * 1e6);
-    if us >= u64::MAX as f64 {
-        u64::MAX / 2
-    } else {
-        us as u64
-    }
-}
 
 /// The slip-prevention controller.
 ///
@@ -164,142 +155,6 @@ pub struct Controller<T, M = Libm> {
 }
 
 impl<T: Real, M: TickMath<T>> Controller<T, M> {
-    /// Validates `config` and precomputes in the tick's own precision `T`.
-    pub fn new(config: ControllerConfig) -> Result<Self, ConfigError> {
-        Self::new_precomputed_in::<T>(config)
-    }
-
-    /// Validates `config` and precomputes in precision `P` (for example f64 on the host
-    /// for an f32 tick), storing the grid in `T`.
-    pub fn new_precomputed_in<P: Real>(config: ControllerConfig) -> Result<Self, ConfigError> {
-        let mut c = Self::blank();
-        c.rebuild_precomputed_in::<P>(config)?;
-        Ok(c)
-    }
-
-    /// A controller from exported tables ([`Capacity::tables`], `host-sim tables`): no
-    /// precomputation at all. The configuration is validated as by [`Controller::new`],
-    /// the tables against it (see [`Capacity::from_tables`]).
-    pub fn from_tables(
-        config: ControllerConfig,
-        tables: &Tables<'_, T>,
-    ) -> Result<Self, FromTablesError> {
-        let mut c = Self::blank();
-        c.rebuild_from_tables(config, tables)?;
-        Ok(c)
-    }
-
-    /// An unconfigured controller: a slot that [`Controller::rebuild_precomputed_in`] or
-    /// [`Controller::rebuild_from_tables`] builds into (the device keeps two, so that a
-    /// new configuration is built in place while the running one ticks on). Never ticked
-    /// as it is.
-    #[inline(always)]
-    pub(crate) fn blank() -> Self {
-        let mut c = Self {
-            config: ControllerConfig::default(),
-            capacity: Capacity::blank(),
-            inv_mu: T::one(),
-            safety: T::one(),
-            n_min: T::zero(),
-            n_max: T::zero(),
-            rise_step: T::zero(),
-            fall_step: T::zero(),
-            fault_force: T::zero(),
-            force_range: T::zero(),
-            moment_range: T::zero(),
-            stale_ticks: 1,
-            lead: Lead::new(0.0, f64::INFINITY, 1e-3),
-            slip_response: SlipResponse::new(1.0, 1e-3),
-            command: T::zero(),
-            last: None,
-            last_good_us: None,
-            max_step_us: 0,
-            period_us: 0,
-            resync: None,
-            time_rejections: 0,
-            bad_ticks: 0,
-            slip_node: 0,
-            _math: PhantomData,
-        };
-        c.set_config(ControllerConfig::default());
-        c
-    }
-
-    /// Puts [`Controller::blank`] into `slot`. Out of line, so that the blank controller
-    /// is assembled in this short-lived frame, not in the caller's, where it would sit on
-    /// top of the precomputation that follows.
-    #[inline(never)]
-    pub(crate) fn blank_into(slot: &mut Option<Self>) {
-        *slot = Some(Self::blank());
-    }
-
-    /// [`Controller::new_precomputed_in`] into `self`, in place: the grid is written where
-    /// it lies, with no copy of it on the stack. On an error `self` is half-built and must
-    /// not tick until a rebuild succeeds (the device then keeps ticking its other slot).
-    pub(crate) fn rebuild_precomputed_in<P: Real>(
-        &mut self,
-        config: ControllerConfig,
-    ) -> Result<(), ConfigError> {
-        config.validate()?;
-        self.capacity.build_into::<P>(&config)?;
-        self.set_config(config);
-        Ok(())
-    }
-
-    /// [`Controller::from_tables`] into `self`, in place. On an error `self` is unchanged
-    /// when the configuration or the tables are refused, and half-built when the sensor
-    /// ranges are (as [`Controller::rebuild_precomputed_in`]).
-    pub(crate) fn rebuild_from_tables(
-        &mut self,
-        config: ControllerConfig,
-        tables: &Tables<'_, T>,
-    ) -> Result<(), FromTablesError> {
-        config.validate().map_err(FromTablesError::Config)?;
-        self.capacity
-            .fill_from_tables(&config, tables)
-            .map_err(FromTablesError::Tables)?;
-        crate::controller::capacity::check_range(&config, &self.capacity)
-            .map_err(FromTablesError::Config)?;
-        self.set_config(config);
-        Ok(())
-    }
-
-    /// Everything but the grid, from `config`, with the start-up state (command `N_min`,
-    /// no history).
-    fn set_config(&mut self, config: ControllerConfig) {
-        let ticks = libm::ceil(config.stale_timeout_s / config.tick_period_s - 1e-9);
-        self.inv_mu = T::of(1.0 / config.mu);
-        self.safety = T::of(config.safety);
-        self.n_min = T::of(config.n_min_n);
-        self.n_max = T::of(config.n_max_n);
-        self.rise_step = T::of(config.rise_rate_n_per_s * config.tick_period_s);
-        self.fall_step = T::of(config.fall_rate_n_per_s * config.tick_period_s);
-        self.fault_force = T::of(config.fault_force_n);
-        self.force_range = T::of(config.force_range_n);
-        self.moment_range = T::of(config.moment_range_nm);
-        self.stale_ticks = if ticks >= u32::MAX as f64 {
-            u32::MAX
-        } else {
-            ticks.max(1.0) as u32
-        };
-        self.lead = Lead::new(
-            config.actuator_lag_s,
-            config.actuator_slew_n_per_s,
-            config.tick_period_s,
-        );
-        self.slip_response = SlipResponse::new(config.mu, config.tick_period_s);
-        self.command = T::of(config.n_min_n);
-        self.last = None;
-        self.last_good_us = None;
-        self.max_step_us = max_step_us(config.tick_period_s);
-        self.period_us = libm::ceil(config.tick_period_s * 1e6).min(1e12) as u64;
-        self.resync = None;
-        self.time_rejections = 0;
-        self.bad_ticks = 0;
-        self.slip_node = 0;
-        self.config = config;
-    }
-
     /// The configuration it was built from.
     pub fn config(&self) -> &ControllerConfig {
         &self.config
@@ -441,32 +296,6 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// Measurements refused for their timestamp so far (saturating).
     pub fn time_rejections(&self) -> u32 {
         self.time_rejections
-    }
-
-    /// Takes over from the controller `previous` that this one replaces (a
-    /// reconfiguration): the command continues from the previous one (clamped into this
-    /// configuration's `[N_min, N_max]`) instead of restarting at `N_min`, so a running
-    /// grasp is not released; the timestamp anchor carries over, and so do the slip
-    /// response's `μ̂` and margin when `μ` and the tick period are unchanged. From there
-    /// the rate limits apply as on any tick.
-    pub fn take_over_from<M2>(&mut self, previous: &Controller<T, M2>) {
-        self.command = previous.command.max(self.n_min).min(self.n_max);
-        // What slip taught about this contact stays, unless the new configuration states
-        // a new belief about μ (or a new tick period, which the response counts in).
-        if previous.config.mu == self.config.mu
-            && previous.config.tick_period_s == self.config.tick_period_s
-        {
-            self.slip_response = previous.slip_response.clone();
-        }
-        self.last_good_us = previous.last_good_us;
-        self.resync = previous.resync;
-        self.time_rejections = previous.time_rejections;
-        if let Some(last) = previous.last {
-            self.last = Some(TickOutput {
-                command_n: self.command,
-                ..last
-            });
-        }
     }
 
     /// A tick with no measurement at all: call it once per tick period when the sensor

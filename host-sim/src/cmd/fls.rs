@@ -1,11 +1,12 @@
 //! `host-sim fls`: sweep one limit surface and print it for people (`table`), for
 //! spreadsheets (`csv`) or for programs (`json`).
 
-use crate::args::{PatchArgs, Precision, ShapeArg};
+use crate::args::{PatchArgs, Precision};
 use crate::input::{config_error, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
+use softgrip::controller::FingerShape;
 use softgrip::fls::{EllipseFit, InscribedEllipse, RadialGap};
 use softgrip::{
     ConfigError, FlsConfig, FlsModel, FlsPoint, FlsTable, QuadratureOrder, Real, Shape,
@@ -135,7 +136,7 @@ fn sample<T: Real>(p: &FlsPoint<T>) -> Sample {
 fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     // The surface's moment scale grows like l/a: beyond these the ellipse fit's fourth
     // powers overflow f32 (and, far out, f64).
-    let rect = args.patch.shape == ShapeArg::Rect;
+    let rect = args.patch.shape == FingerShape::Rect;
     if rect && args.aspect.is_finite() && !(1e-6..=1e6).contains(&args.aspect) {
         return Err(CliError::Usage(format!(
             "--aspect: {} is out of range, expected 1e-6 <= aspect <= 1e6",
@@ -144,10 +145,10 @@ fn config(args: &FlsArgs) -> Result<FlsConfig, CliError> {
     }
     let order = QuadratureOrder::new(args.order).map_err(usage)?;
     let shape = match args.patch.shape {
-        ShapeArg::Rect => Shape::Rect {
+        FingerShape::Rect => Shape::Rect {
             aspect: args.aspect,
         },
-        ShapeArg::Disc => Shape::Disc,
+        FingerShape::Disc => Shape::Disc,
     };
     for (name, v) in [("alpha", args.patch.alpha), ("aspect", args.aspect)] {
         if !v.is_finite() && (rect || name != "aspect") {

@@ -2,14 +2,14 @@
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
-use crate::args::{PatchArgs, Precision, ShapeArg};
+use crate::args::{PatchArgs, Precision};
 use crate::input::{config_error, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use softgrip::contact::ContactSize;
 use softgrip::controller::{
-    Controller, ControllerConfig, FingerShape, Libm, Micromath, Mode, SkewParams, Status, TickMath,
+    Controller, ControllerConfig, Libm, Micromath, Mode, SkewParams, Status, TickMath,
 };
 use softgrip::{ConfigError, Real};
 
@@ -248,10 +248,7 @@ pub fn config(args: &RequiredForceArgs) -> Result<ControllerConfig, CliError> {
     };
     Ok(ControllerConfig {
         mu: args.mu,
-        shape: match args.patch.shape {
-            ShapeArg::Rect => FingerShape::Rect,
-            ShapeArg::Disc => FingerShape::Disc,
-        },
+        shape: args.patch.shape,
         k: args.patch.k,
         skew,
         c_m_per_n_gamma: args.c,

@@ -4,6 +4,7 @@
 //! depend on it and not on each other.
 
 use serde::Deserialize;
+use softgrip::controller::FingerShape;
 
 /// The fingertip and its contact.
 #[derive(Debug, Clone, Deserialize)]
@@ -11,7 +12,7 @@ use serde::Deserialize;
 pub struct Finger {
     /// `rect` (hemicylinder) or `disc` (hemisphere).
     #[serde(default = "default_shape")]
-    pub shape: String,
+    pub shape: FingerShape,
     /// Pressure exponent `k ≥ 1`.
     #[serde(default = "default_k")]
     pub k: f64,
@@ -32,8 +33,8 @@ pub struct Finger {
     pub poisson: f64,
 }
 
-fn default_shape() -> String {
-    "rect".into()
+fn default_shape() -> FingerShape {
+    FingerShape::Rect
 }
 fn default_k() -> f64 {
     2.0

@@ -9,7 +9,7 @@
 
 use crate::sim::scene::{Scene, SceneError};
 use softgrip::contact::ContactSize;
-use softgrip::controller::SkewParams;
+use softgrip::controller::{FingerShape, SkewParams};
 use softgrip::fls::AspectGrid;
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
 use std::sync::Arc;
@@ -51,7 +51,7 @@ impl Truth {
         let f = &scene.finger;
         let err = |e: softgrip::ConfigError| SceneError(format!("finger: {e}"));
         let contact = ContactSize::<f64>::new(f.c, f.gamma).map_err(err)?;
-        let rect = f.shape == "rect";
+        let rect = f.shape == FingerShape::Rect;
         let model = FlsModel::<f64>::new(FlsConfig {
             shape: if rect {
                 Shape::Rect { aspect: 1.0 }

@@ -56,6 +56,9 @@ pub struct SimulateArgs {
     /// Where to write summary.json, the time series and the plots.
     #[arg(long, default_value = "sim-out")]
     out: PathBuf,
+    /// No progress bar (there is none either when stderr is not a terminal).
+    #[arg(long)]
+    quiet: bool,
 }
 
 fn scenes(args: &SimulateArgs) -> Result<Vec<PathBuf>, CliError> {
@@ -251,7 +254,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         .iter()
         .map(|s| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
         .sum();
-    let bar = crate::progress::bar(total, "ticks", false);
+    let bar = crate::progress::bar(total, "ticks", args.quiet);
     let mut all: Vec<RunSummary> = Vec::new();
     for scene in &loaded {
         let mut runs = Vec::new();

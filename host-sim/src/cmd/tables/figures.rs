@@ -84,14 +84,14 @@ fn figures() -> Vec<Figure> {
 /// A computed surface: (figure, curve), its points and its pitch.
 type Swept = ((usize, usize), Vec<(f64, f64)>, f64);
 
-pub(super) fn plot(out: &Path) -> Result<(), CliError> {
+pub(super) fn plot(out: &Path, quiet: bool) -> Result<(), CliError> {
     let figs = figures();
     let jobs: Vec<(usize, usize)> = figs
         .iter()
         .enumerate()
         .flat_map(|(f, fig)| (0..fig.2.len()).map(move |c| (f, c)))
         .collect();
-    let b = bar(jobs.len() as u64, "surfaces");
+    let b = bar(jobs.len() as u64, "surfaces", quiet);
     let results: Vec<Result<Swept, String>> = jobs
         .par_iter()
         .map(|&(f, c)| {

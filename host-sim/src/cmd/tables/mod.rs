@@ -76,6 +76,9 @@ pub struct TablesArgs {
     /// Also sweep k × skew × aspect × μ in parallel and write `sweep.csv`.
     #[arg(long)]
     sweep: bool,
+    /// No progress bar (there is none either when stderr is not a terminal).
+    #[arg(long)]
+    quiet: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -137,8 +140,8 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
         .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))
 }
 
-fn bar(len: u64, what: &str) -> ProgressBar {
-    let b = crate::progress::bar(len, "", false);
+fn bar(len: u64, what: &str, quiet: bool) -> ProgressBar {
+    let b = crate::progress::bar(len, "", quiet);
     b.set_message(what.to_string());
     b
 }
@@ -154,10 +157,10 @@ pub fn run(args: &TablesArgs) -> Result<(), CliError> {
         .ok_or_else(|| usage("--out: required (the directory to write into)"))?;
     export::export(args, out)?;
     if args.plot {
-        figures::plot(out)?;
+        figures::plot(out, args.quiet)?;
     }
     if args.sweep {
-        sweep::sweep(out)?;
+        sweep::sweep(out, args.quiet)?;
     }
     Ok(())
 }

@@ -9,7 +9,7 @@ use softgrip::fls::RadialGap;
 use softgrip::{FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
 use std::path::Path;
 
-pub(super) fn sweep(out: &Path) -> Result<(), CliError> {
+pub(super) fn sweep(out: &Path, quiet: bool) -> Result<(), CliError> {
     let ks = [1.0, 2.0, 4.0, 8.0, 50.0, f64::INFINITY];
     let skews = [0.0, 0.5, 0.9];
     let aspects = [0.5, 1.0, 2.0, 4.0];
@@ -24,7 +24,7 @@ pub(super) fn sweep(out: &Path) -> Result<(), CliError> {
             }
         }
     }
-    let b = bar(sets.len() as u64, "parameter sets");
+    let b = bar(sets.len() as u64, "parameter sets", quiet);
     let rows: Vec<Result<String, String>> = sets
         .par_iter()
         .map(|&(k, s, a, mu)| {

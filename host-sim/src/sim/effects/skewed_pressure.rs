@@ -7,7 +7,7 @@ use super::settings::{Range, Settings};
 use super::Effect;
 use crate::sim::finger::Finger;
 use serde::Deserialize;
-use softgrip::controller::SkewParams;
+use softgrip::controller::{FingerShape, SkewParams};
 
 /// `[effect.skewed_pressure]`.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -58,7 +58,7 @@ impl SkewedPressure {
     /// changes nothing)) and the finger's shape.
     pub fn new(s: &SkewedPressureSettings, finger: &Finger) -> Self {
         let delta = s.delta_over_a;
-        let default_locus = if finger.shape == "disc" {
+        let default_locus = if finger.shape == FingerShape::Disc {
             0.0
         } else {
             delta / 2.0

@@ -2,7 +2,7 @@
 //! and configuration errors named by the scene key they come from.
 
 use crate::sim::scene::{Scene, SceneError};
-use softgrip::controller::{ControllerConfig, FingerShape, Mode};
+use softgrip::controller::{ControllerConfig, Mode};
 
 /// softgrip's configuration for a scene: the finger as the scene gives it (without the
 /// true contact's skew, which the controller does not know), the scene's controller
@@ -22,11 +22,7 @@ pub fn controller_config_for(
     let cfg = ControllerConfig {
         // The μ the controller believes; the ground truth uses the finger's.
         mu: s.mu.unwrap_or(f.mu),
-        shape: if f.shape == "disc" {
-            FingerShape::Disc
-        } else {
-            FingerShape::Rect
-        },
+        shape: f.shape,
         k: f.k,
         skew: None,
         c_m_per_n_gamma: f.c,

@@ -82,7 +82,7 @@ impl<T: Real> Capacity<T> {
             }
         }
         cap.fill_inv_width();
-        check_range(cfg, &cap)?;
+        check_range(cfg, cap)?;
         match cfg.mode {
             Mode::Table => cap.build_shapes(cfg, &model, &contact, varying)?,
             Mode::Ellipse => {

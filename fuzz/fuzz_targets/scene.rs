@@ -3,7 +3,6 @@
 //! the ground truth's tables). Checks: no panic; every error is one line.
 #![no_main]
 
-use host_sim::sim::effects::Pipeline;
 use host_sim::sim::run::controller_config;
 use host_sim::sim::scene::Scene;
 use host_sim::sim::truth::Truth;
@@ -11,7 +10,7 @@ use libfuzzer_sys::fuzz_target;
 
 fn build(text: &str) -> Result<(), String> {
     let scene = Scene::parse(text).map_err(|e| e.to_string())?;
-    let pipeline = Pipeline::build(&scene, Some(text)).map_err(|e| e.to_string())?;
+    let pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     let cfg = controller_config(&scene).map_err(|e| e.to_string())?;
     Truth::build(
         &scene,

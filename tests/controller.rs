@@ -738,3 +738,37 @@ fn idle_ticks_detect_a_silent_sensor() {
     assert_eq!(o.status, Status::Ok);
     assert!(!o.fault_active);
 }
+
+/// Found by the `config` fuzz target: a contact far narrower than the finger is long
+/// (`c = 5.8e-13 m/N^γ`, `l = 0.23 m`: `l/a` near 1e12) broke the limit surface's sampling,
+/// the inscribed ellipse came out with semi-axes of 1e-19 (f32) and 1e-10 (f64), and every
+/// tick asked for infinite force. Such a configuration is now refused, naming
+/// `half_length_m`. A finger at `l/a` = 2e2 builds in both precisions. (For `k = 2` the
+/// inscribed ellipse's scale is 1.156 from `l/a` = 2e2 to 2e6 in f64 and breaks at 2e7;
+/// an f32 start-up degrades from about 5e2, giving larger scales, that is more force.)
+#[test]
+fn an_aspect_the_start_up_cannot_sample_is_refused_by_name() {
+    let bad = ControllerConfig {
+        k: 14.5,
+        c_m_per_n_gamma: 5.820766091346741e-13,
+        half_length_m: 0.23061767484992743,
+        moment_range_nm: 33.9,
+        ..ControllerConfig::default()
+    };
+    let e = Controller::<f32>::new(bad).unwrap_err();
+    assert_eq!(e.param(), "half_length_m", "{e}");
+    let e = Controller::<f64>::new(bad).unwrap_err();
+    assert_eq!(e.param(), "half_length_m", "{e}");
+    let long = ControllerConfig {
+        k: 14.5,
+        c_m_per_n_gamma: 2.5e-3,
+        half_length_m: 0.23,
+        ..ControllerConfig::default()
+    };
+    for c in [
+        Controller::<f32>::new(long).map(|_| ()),
+        Controller::<f64>::new(long).map(|_| ()),
+    ] {
+        c.unwrap();
+    }
+}

@@ -377,13 +377,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         let Some(ctl) = self.controller_mut() else {
             return Reply::NotConfigured { seq: frame.seq };
         };
-        let m = Measurement {
-            tangential_force_n: frame.tangential_force_n,
-            torsional_moment_nm: frame.torsional_moment_nm,
-            normal_force_n: frame.normal_force_n,
-            timestamp_us: frame.timestamp_us,
-            slip: frame.slip,
-        };
+        let m = Measurement::from(&frame);
         let start = clock.now();
         let out = ctl.tick(&m);
         let cost = clock.now().wrapping_sub(start);

@@ -55,16 +55,6 @@ fn frame(seq: u32, ft: [f32; 2], mn: f32, n: f32, slip: SlipSignal) -> SensorFra
     }
 }
 
-fn measurement(f: &SensorFrame) -> Measurement<f32> {
-    Measurement {
-        tangential_force_n: f.tangential_force_n,
-        torsional_moment_nm: f.torsional_moment_nm,
-        normal_force_n: f.normal_force_n,
-        timestamp_us: f.timestamp_us,
-        slip: f.slip,
-    }
-}
-
 const FT_N: [f32; 15] = [
     0.0, 0.001, 0.01, 0.05, 0.1, 0.3, 0.7, 1.5, 3.0, 5.0, 8.0, 12.0, 16.0, 25.0, 40.0,
 ];
@@ -96,14 +86,14 @@ fn hardest_loads(cfg: ControllerConfig, count: usize) -> Vec<([f32; 2], f32)> {
                 let mut c = base.clone();
                 let (fa, ma) = far(i + j + k);
                 let f0 = frame(1, fa, ma, 3.0, SlipSignal::None);
-                c.tick(&measurement(&f0));
+                c.tick(&Measurement::from(&f0));
                 let f1 = frame(2, [ft * 0.8, ft * 0.6], mn, 3.0, slip);
-                let out = c.tick(&measurement(&f1));
+                let out = c.tick(&Measurement::from(&f1));
                 scored.push((out.iterations, [ft * 0.8, ft * 0.6], mn));
             }
         }
     }
-    base.tick(&measurement(&frame(
+    base.tick(&Measurement::from(&frame(
         0,
         [0.0; 2],
         0.0,
@@ -180,7 +170,7 @@ fn run(
         let Reply::Command(cmd) = link.exchange(&Request::Sensor(*f)).unwrap() else {
             panic!("no command at tick {i}")
         };
-        let want = reference.tick(&measurement(f));
+        let want = reference.tick(&Measurement::from(f));
         assert_eq!(
             cmd.normal_force_n.to_bits(),
             want.command_n.to_bits(),

@@ -7,11 +7,12 @@
 //! Needs `scripts/firmware-setup.sh` and `scripts/firmware-build.sh board`; compiled as
 //! ignored without them (`host-sim/build.rs`) unless `SOFTGRIP_REQUIRE_QEMU=1`.
 
-use host_sim::link::qemu::{default_paths, QemuLink};
+mod common;
+
+use host_sim::link::qemu::QemuLink;
 use host_sim::link::Link;
 use softgrip::controller::{Controller, ControllerConfig, Libm, Measurement};
 use softgrip::protocol::{CostUnit, Reply, Request, SensorFrame};
-use std::path::PathBuf;
 
 #[test]
 #[cfg_attr(
@@ -19,9 +20,9 @@ use std::path::PathBuf;
     ignore = "needs QEMU and the board firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh board"
 )]
 fn the_board_build_boots_in_qemu_matches_the_host_and_resets_on_shutdown() {
-    let (qemu, _) = default_paths();
-    let elf = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../target/firmware/board/softgrip-firmware.elf");
+    let Some((qemu, elf)) = common::qemu_and_firmware("board") else {
+        return;
+    };
     let mut link = QemuLink::boot(&qemu, &elf).unwrap();
     let cfg = ControllerConfig::default();
     assert_eq!(
@@ -42,13 +43,7 @@ fn the_board_build_boots_in_qemu_matches_the_host_and_resets_on_shutdown() {
         let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
             panic!("no command at tick {i}")
         };
-        let want = direct.tick(&Measurement {
-            tangential_force_n: f.tangential_force_n,
-            torsional_moment_nm: f.torsional_moment_nm,
-            normal_force_n: f.normal_force_n,
-            timestamp_us: f.timestamp_us,
-            slip: Default::default(),
-        });
+        let want = direct.tick(&Measurement::from(&f));
         assert_eq!(
             cmd.normal_force_n.to_bits(),
             want.command_n.to_bits(),

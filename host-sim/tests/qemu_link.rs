@@ -56,13 +56,7 @@ fn the_firmware_in_qemu_matches_the_host_controller_and_exits_cleanly() {
             let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
                 panic!("no command")
             };
-            let want = direct.tick(&Measurement {
-                tangential_force_n: f.tangential_force_n,
-                torsional_moment_nm: f.torsional_moment_nm,
-                normal_force_n: f.normal_force_n,
-                timestamp_us: f.timestamp_us,
-                slip: Default::default(),
-            });
+            let want = direct.tick(&Measurement::from(&f));
             assert_eq!(
                 cmd.normal_force_n.to_bits(),
                 want.command_n.to_bits(),
@@ -149,13 +143,7 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
         let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
             panic!()
         };
-        let want = direct.tick(&Measurement {
-            tangential_force_n: f.tangential_force_n,
-            torsional_moment_nm: f.torsional_moment_nm,
-            normal_force_n: f.normal_force_n,
-            timestamp_us: f.timestamp_us,
-            slip: Default::default(),
-        });
+        let want = direct.tick(&Measurement::from(&f));
         assert_eq!(
             cmd.normal_force_n.to_bits(),
             want.command_n.to_bits(),

@@ -10,7 +10,9 @@ use heapless::String;
 use serde::{Deserialize, Serialize};
 
 use super::frame::MAX_FRAME_LEN;
-use crate::controller::{ControllerConfig, FromTablesError, SlipSignal, Status, TableError};
+use crate::controller::{
+    ControllerConfig, FromTablesError, Measurement, SlipSignal, Status, TableError,
+};
 use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
@@ -94,6 +96,19 @@ pub struct SensorFrame {
     pub normal_force_n: f32,
     /// What a tactile slip sensor saw ([`SlipSignal::None`] without one).
     pub slip: SlipSignal,
+}
+
+impl From<&SensorFrame> for Measurement<f32> {
+    /// The measurement a sensor frame carries (everything but its sequence number).
+    fn from(f: &SensorFrame) -> Self {
+        Measurement {
+            tangential_force_n: f.tangential_force_n,
+            torsional_moment_nm: f.torsional_moment_nm,
+            normal_force_n: f.normal_force_n,
+            timestamp_us: f.timestamp_us,
+            slip: f.slip,
+        }
+    }
 }
 
 /// The controller's answer to one [`SensorFrame`] (device → host inside

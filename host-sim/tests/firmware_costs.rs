@@ -38,10 +38,7 @@ const OVER_BUDGET: &[&str] = &[
     "default: flash",
     "default: static RAM + stack, ellipse",
     "default: static RAM + stack, table",
-    "default: tick, ellipse",
-    "default: tick, table",
     "default: start-up, table",
-    "prebuilt-tables: tick, table",
 ];
 
 fn frame(seq: u32, ft: [f32; 2], mn: f32, n: f32, slip: SlipSignal) -> SensorFrame {

@@ -95,13 +95,29 @@ fn lerp<T: Real>(a: T, b: T, w: T) -> T {
     a + (b - a) * w
 }
 
+/// `x` clamped to `[lo, hi]` (`lo ≤ hi`) by two comparisons; NaN gives `lo`. The same as
+/// `x.max(lo).min(hi)` (up to the sign of a zero), without the M4F's out-of-line
+/// `fmaxf`/`fminf` calls (it has no `VMAXNM`): the tick clamps in every `φ` step.
+#[inline(always)]
+fn clamp<T: Real>(x: T, lo: T, hi: T) -> T {
+    if x > lo {
+        if x < hi {
+            x
+        } else {
+            hi
+        }
+    } else {
+        lo
+    }
+}
+
 /// Splits `x ∈ [0, last]` into an index in `[0, last − 1]` and a fraction (NaN reads as 0).
 #[inline(always)]
 fn split<T: Real>(x: T, last: usize) -> (usize, T) {
     if last == 0 {
         return (0, T::zero());
     }
-    let x = x.max(T::zero()).min(T::of_usize(last));
+    let x = clamp(x, T::zero(), T::of_usize(last));
     // `x ≥ 0`, so truncation is the floor (and compiles to one conversion, no libm call).
     let i = x.to_usize().unwrap_or(0).min(last - 1);
     (i, x - T::of_usize(i))
@@ -194,34 +210,35 @@ impl<T: Real> Capacity<T> {
     /// `φ(N)` multiplied by `R²` (ellipse) or `R` (table), which keeps its sign and
     /// spares the divisions: ellipse `R²(N² − F²) − M²`, table `N R − (F R + M)·w(t)` with
     /// `t = M/(F R + M)`.
-    #[inline]
-    fn phi(&self, f: T, m: T, n: T, arm: T, pos: T) -> T {
-        match self.mode {
-            Mode::Ellipse => arm * arm * (n * n - f * f) - m * m,
-            Mode::Table => {
-                let s = f * arm + m;
-                if s == T::zero() {
-                    return n * arm;
-                }
-                n * arm - s * self.inv_radius(m / s, pos)
+    /// `TABLE` is the mode, fixed for a whole solve ([`Capacity::solve_from`] dispatches
+    /// once), so the node tests and Illinois steps carry no mode branch and ellipse mode
+    /// reads no aspect position.
+    #[inline(always)]
+    fn phi<const TABLE: bool>(&self, f: T, m: T, n: T, arm: T, pos: T) -> T {
+        if TABLE {
+            let s = f * arm + m;
+            if s == T::zero() {
+                return n * arm;
             }
+            n * arm - s * self.inv_radius(m / s, pos)
+        } else {
+            arm * arm * (n * n - f * f) - m * m
         }
     }
 
-    #[inline]
-    fn phi_node(&self, f: T, m: T, j: usize) -> T {
-        self.phi(
-            f,
-            m,
-            at(&self.force_n, j),
-            at(&self.arm_m, j),
-            at(&self.aspect_pos, j),
-        )
+    #[inline(always)]
+    fn phi_node<const TABLE: bool>(&self, f: T, m: T, j: usize) -> T {
+        let pos = if TABLE {
+            at(&self.aspect_pos, j)
+        } else {
+            T::zero()
+        };
+        self.phi::<TABLE>(f, m, at(&self.force_n, j), at(&self.arm_m, j), pos)
     }
 
     /// `R` and the aspect position at the force `n` inside interval `j` (nodes `j`,
     /// `j + 1`).
-    #[inline]
+    #[inline(always)]
     fn interpolate(&self, j: usize, n: T) -> (T, T) {
         let w = (n - at(&self.force_n, j)) * at(&self.inv_width_per_n, j);
         let arm = lerp(at(&self.arm_m, j), at(&self.arm_m, j + 1), w);
@@ -282,6 +299,19 @@ impl<T: Real> Capacity<T> {
         from: usize,
         hint: Option<usize>,
     ) -> Solution<T> {
+        match self.mode {
+            Mode::Ellipse => self.solve_in::<M, false>(f, m, from, hint),
+            Mode::Table => self.solve_in::<M, true>(f, m, from, hint),
+        }
+    }
+
+    fn solve_in<M: TickMath<T>, const TABLE: bool>(
+        &self,
+        f: T,
+        m: T,
+        from: usize,
+        hint: Option<usize>,
+    ) -> Solution<T> {
         let done = |force_n, node| Solution {
             force_n,
             iterations: 0,
@@ -295,9 +325,9 @@ impl<T: Real> Capacity<T> {
         // holds; `hi` holds or is `nodes`.
         let (mut lo, mut hi) = (from.min(self.nodes), self.nodes);
         if let Some(h) = hint.filter(|&h| h > lo && h < self.nodes) {
-            if self.phi_node(f, m, h) >= T::zero() {
+            if self.phi_node::<TABLE>(f, m, h) >= T::zero() {
                 hi = h;
-                if self.phi_node(f, m, h - 1) < T::zero() {
+                if self.phi_node::<TABLE>(f, m, h - 1) < T::zero() {
                     lo = h;
                 } else {
                     hi = h - 1;
@@ -307,7 +337,7 @@ impl<T: Real> Capacity<T> {
             }
         }
         for _ in 0..3 {
-            if lo < hi && self.phi_node(f, m, lo) < T::zero() {
+            if lo < hi && self.phi_node::<TABLE>(f, m, lo) < T::zero() {
                 lo += 1;
             } else {
                 hi = lo;
@@ -315,7 +345,7 @@ impl<T: Real> Capacity<T> {
         }
         while lo < hi {
             let mid = lo + (hi - lo) / 2;
-            if self.phi_node(f, m, mid) >= T::zero() {
+            if self.phi_node::<TABLE>(f, m, mid) >= T::zero() {
                 hi = mid;
             } else {
                 lo = mid + 1;
@@ -327,17 +357,20 @@ impl<T: Real> Capacity<T> {
         if lo >= self.nodes {
             return done(self.above_grid::<M>(f, m), self.nodes);
         }
-        let mut sol = self.illinois_in(f, m, lo - 1);
+        let mut sol = self.illinois_in::<TABLE>(f, m, lo - 1);
         sol.node = lo;
         sol
     }
 
-    fn illinois_in(&self, f: T, m: T, j: usize) -> Solution<T> {
+    fn illinois_in<const TABLE: bool>(&self, f: T, m: T, j: usize) -> Solution<T> {
         let (a, b) = (at(&self.force_n, j), at(&self.force_n, j + 1));
-        let (fa, fb) = (self.phi_node(f, m, j), self.phi_node(f, m, j + 1));
+        let (fa, fb) = (
+            self.phi_node::<TABLE>(f, m, j),
+            self.phi_node::<TABLE>(f, m, j + 1),
+        );
         Self::illinois((a, fa), (b, fb), |c| {
             let (arm, pos) = self.interpolate(j, c);
-            self.phi(f, m, c, arm, pos)
+            self.phi::<TABLE>(f, m, c, arm, pos)
         })
     }
 
@@ -362,7 +395,7 @@ impl<T: Real> Capacity<T> {
             // root within an ulp of one end is then settled by the next test instead of
             // by halving the bracket bit by bit.
             let step = tol * b * T::of(0.5);
-            let mut c = (b - fb * (b - a) / (fb - fa)).max(a + step).min(b - step);
+            let mut c = clamp(b - fb * (b - a) / (fb - fa), a + step, b - step);
             if !(c > a && c < b) {
                 c = a + (b - a) * T::of(0.5);
             }

@@ -20,11 +20,13 @@ fn main() {
         root.join("target/firmware/prebuilt-tables"),
         root.join("target/firmware/sqrt-check"),
         root.join("target/firmware/board"),
+        root.join("target/firmware/solve-to-cap"),
         qemu.clone(),
         elf("default"),
         elf("prebuilt-tables"),
         elf("sqrt-check"),
         elf("board"),
+        elf("solve-to-cap"),
     ] {
         println!("cargo::rerun-if-changed={}", path.display());
     }
@@ -34,7 +36,7 @@ fn main() {
         ("no_qemu", have("default")),
         (
             "no_qemu_prebuilt",
-            have("default") && have("prebuilt-tables"),
+            have("default") && have("prebuilt-tables") && have("solve-to-cap"),
         ),
         ("no_qemu_sqrt", have("sqrt-check")),
         ("no_qemu_board", have("board")),

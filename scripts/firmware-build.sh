@@ -11,7 +11,9 @@
 #   host-sim/tests/qemu_sqrt.rs), defmt (the core's defmt logging with a sink logger,
 #   to measure its flash cost; DEFMT_LOG sets the level compiled in, defmt's default is
 #   error only), board (a real STM32F405/F407: clocks, USART1 pins and baud rate set at
-#   start-up, TIM2 at the 16 MHz reset clock, reset instead of the emulator's exit).
+#   start-up, TIM2 at the 16 MHz reset clock, reset instead of the emulator's exit),
+#   solve-to-cap (the default with every Illinois solve run to its iteration cap: the
+#   worst tick, measured by host-sim/tests/firmware_costs.rs).
 #
 # Fallback, only where rustup cannot install the target (firmware-setup.sh then installs
 # Debian's rustc-web and its library source): `core` is built from source with
@@ -61,6 +63,7 @@ for v in "${variants[@]}"; do
             ;;
         precompute-f64) features="firmware,precompute-f64" ;;
         board) features="firmware,board" ;;
+        solve-to-cap) features="firmware,solve-to-cap" ;;
         defmt) features="firmware,defmt" ;;
         *) echo "unknown variant $v" >&2; exit 2 ;;
     esac

@@ -4,7 +4,7 @@
 use proptest::prelude::*;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
-    MAX_ILLINOIS_ITERATIONS,
+    MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32,
 };
 use softgrip::{contact::ContactSize, FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
 
@@ -661,7 +661,7 @@ proptest! {
             prop_assert!(o.required_n.is_finite() && o.required_n >= 0.0);
             prop_assert!(o.n_slip_n.is_finite() && o.n_slip_n >= 0.0);
             prop_assert!(o.utilisation.is_finite() && o.utilisation >= 0.0);
-            prop_assert!(o.iterations <= 2 * MAX_ILLINOIS_ITERATIONS);
+            prop_assert!(o.iterations <= 2 * MAX_ILLINOIS_ITERATIONS_F32);
         }
     }
 }
@@ -700,12 +700,13 @@ fn solves_stay_far_below_the_iteration_cap() {
             worst32 = worst32.max(s.iterations);
         }
         eprintln!(
-            "{name}: Illinois iterations per solve: mean {:.1} (f64), worst {worst64} (f64), {worst32} (f32), cap {MAX_ILLINOIS_ITERATIONS}",
+            "{name}: Illinois iterations per solve: mean {:.1} (f64), worst {worst64} (f64), {worst32} (f32), caps {MAX_ILLINOIS_ITERATIONS} (f64), {MAX_ILLINOIS_ITERATIONS_F32} (f32)",
             total as f64 / count as f64
         );
-        // Well below the cap (16): a test at the cap itself could never fail.
+        // Well below the f64 cap (16), and below the f32 cap (6, one above the 5 seen
+        // here): a test at a cap itself could never fail.
         assert!(
-            worst64 <= 12 && worst32 <= 12,
+            worst64 <= 12 && worst32 < MAX_ILLINOIS_ITERATIONS_F32,
             "{name}: {worst64} {worst32}"
         );
     }

@@ -10,8 +10,9 @@ mod status;
 mod tick;
 
 pub use capacity::{
-    Capacity, Solution, TableError, Tables, DIRECTIONS, MAX_ASPECTS, MAX_FORCE_NODES,
-    MAX_ILLINOIS_ITERATIONS, MAX_TABLE_SAMPLES, UTILISATION_MAX,
+    max_illinois_iterations, Capacity, Solution, TableError, Tables, DIRECTIONS, MAX_ASPECTS,
+    MAX_FORCE_NODES, MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32, MAX_TABLE_SAMPLES,
+    UTILISATION_MAX,
 };
 pub use config::{ControllerConfig, FingerShape, Mode, SkewParams};
 pub use math::{Libm, Micromath, TickMath};

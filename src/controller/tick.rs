@@ -84,7 +84,7 @@ pub const RESYNC_FRAMES: u8 = 3;
 /// [`ConfigError`] naming the bad field and precomputes the [`Capacity`] grid (this is
 /// where all `powf` and quadrature happen). After that [`Controller::tick`] cannot fail,
 /// does not allocate and runs in bounded time: two solves of at most
-/// `log2(force_nodes) + MAX_ILLINOIS_ITERATIONS` steps each, and one utilisation.
+/// `log2(force_nodes) + max_illinois_iterations` steps each, and one utilisation.
 ///
 /// Each tick, for a good measurement (finite, within the sensor ranges, newer than the
 /// last good one):

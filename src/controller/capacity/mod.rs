@@ -51,10 +51,27 @@ pub const MAX_ASPECTS: usize = 12;
 pub const DIRECTIONS: usize = 33;
 /// Most centres of rotation in one start-up sweep (table mode).
 pub const MAX_TABLE_SAMPLES: usize = 128;
-/// Most iterations of the Illinois step in one solve. The tolerance (8 ulp of the answer)
-/// is met in 3 to 4 on average and in at most 8 over the 140 000 loads of
+/// Most iterations of the Illinois step in one solve in f64. The tolerance (8 ulp of the
+/// answer) is met in 3 to 4 on average and in at most 8 over the 140 000 loads of
 /// `tests/controller.rs` (which fails above 12); the cap bounds the worst case.
 pub const MAX_ILLINOIS_ITERATIONS: u8 = 16;
+/// Most iterations of the Illinois step in one solve in f32, the firmware's precision. Its
+/// 8-ulp tolerance is met in at most 5 over the same loads (the test fails above 5), so
+/// the cap is one above that; it bounds the worst tick, which the README's cost table
+/// measures with every solve run to this cap (the `solve-to-cap` feature). A solve that
+/// reaches a cap returns the upper end of its bracket, where the load holds: more force
+/// than the tolerance would give, never less.
+pub const MAX_ILLINOIS_ITERATIONS_F32: u8 = 6;
+
+/// The iteration cap of one solve in `T`: [`MAX_ILLINOIS_ITERATIONS_F32`] for f32,
+/// [`MAX_ILLINOIS_ITERATIONS`] for f64.
+pub fn max_illinois_iterations<T: Real>() -> u8 {
+    if T::epsilon() > T::of(1e-10) {
+        MAX_ILLINOIS_ITERATIONS_F32
+    } else {
+        MAX_ILLINOIS_ITERATIONS
+    }
+}
 /// The largest utilisation a tick reports (a load on a contact with no normal force).
 pub const UTILISATION_MAX: f64 = 1e6;
 
@@ -248,7 +265,7 @@ impl<T: Real> Capacity<T> {
 
     /// The least normal force [N] at which the (already scaled) demand `f = F`, `m = M`
     /// holds: `N_req`. Inputs must be finite and non-negative (the tick guarantees it).
-    /// Cost: `log2(force_nodes)` node tests, then at most [`MAX_ILLINOIS_ITERATIONS`].
+    /// Cost: `log2(force_nodes)` node tests, then at most [`max_illinois_iterations`].
     pub fn required_force<M: TickMath<T>>(&self, f: T, m: T) -> Solution<T> {
         let (f, m) = self.scaled(f, m);
         self.solve_from::<M>(f, m, 0, None)
@@ -377,16 +394,26 @@ impl<T: Real> Capacity<T> {
     /// Illinois (modified regula falsi) on `[a, b]` with `φ(a) < 0 ≤ φ(b)`: the bracket is
     /// kept at every step (a step that would leave it bisects instead), and the upper end,
     /// where the load holds, is returned once the bracket is within 8 ulp or after
-    /// [`MAX_ILLINOIS_ITERATIONS`].
+    /// [`max_illinois_iterations`]. With the `solve-to-cap` feature (a measurement build)
+    /// the tolerance is 0, so every solve runs to the cap (each step keeps the bracket, so
+    /// the answer still holds the load).
     fn illinois(
         (mut a, mut fa): (T, T),
         (mut b, mut fb): (T, T),
         phi: impl Fn(T) -> T,
     ) -> Solution<T> {
-        let tol = T::epsilon() * T::of(8.0);
+        // 8 ulp; 0 in the measurement build, which keeps the code the same (the constant
+        // folds, the test stays) so that its instruction counts are the default's.
+        let ulps = if cfg!(feature = "solve-to-cap") {
+            0.0
+        } else {
+            8.0
+        };
+        let tol = T::epsilon() * T::of(ulps);
+        let cap = max_illinois_iterations::<T>();
         let mut side = 0i8;
         let mut iterations = 0u8;
-        while iterations < MAX_ILLINOIS_ITERATIONS {
+        while iterations < cap {
             if fb == T::zero() || b - a <= tol * b {
                 break;
             }

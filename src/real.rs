@@ -123,3 +123,30 @@ impl Real for f32 {
         self as f64
     }
 }
+
+/// The square root of the start-up's hot loops (the limit-surface kernels): `libm`'s, or
+/// one that a [`TickMath`](crate::controller::TickMath) backend offers
+/// ([`TickMath::startup_sqrt`](crate::controller::TickMath::startup_sqrt): the firmware's
+/// `VSQRT`). Both are correctly rounded, so the precomputed grid is the same bit for bit;
+/// only the cost differs (on the M4F, one instruction instead of libm's software routine).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SqrtFn<T>(Option<fn(T) -> T>);
+
+impl<T: Real> SqrtFn<T> {
+    /// `libm`'s.
+    pub(crate) const LIBM: Self = Self(None);
+
+    /// `f` where given, else `libm`'s.
+    pub(crate) fn new(f: Option<fn(T) -> T>) -> Self {
+        Self(f)
+    }
+
+    /// `sqrt(x)`.
+    #[inline(always)]
+    pub(crate) fn sqrt(self, x: T) -> T {
+        match self.0 {
+            Some(f) => f(x),
+            None => x.libm_sqrt(),
+        }
+    }
+}

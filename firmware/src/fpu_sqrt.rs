@@ -9,6 +9,7 @@
 #![allow(unsafe_code)]
 
 use softgrip::controller::TickMath;
+use softgrip::real::Real;
 
 /// The FPU's square root.
 #[derive(Debug, Clone, Copy, Default)]
@@ -46,5 +47,15 @@ impl TickMath<f32> for FpuSqrt {
     #[inline(always)]
     fn sqrt(x: f32) -> f32 {
         vsqrt(x)
+    }
+
+    /// `VSQRT` for an f32 start-up too (the limit-surface kernels take two square roots
+    /// per quadrature node); an f64 start-up (`precompute-f64`) keeps libm's, as the M4F
+    /// has no double-precision FPU.
+    fn startup_sqrt<P: Real>() -> Option<fn(P) -> P> {
+        let f: fn(f32) -> f32 = vsqrt;
+        (&f as &dyn core::any::Any)
+            .downcast_ref::<fn(P) -> P>()
+            .copied()
     }
 }

@@ -38,7 +38,6 @@ const OVER_BUDGET: &[&str] = &[
     "default: flash",
     "default: static RAM + stack, ellipse",
     "default: static RAM + stack, table",
-    "default: start-up, table",
 ];
 
 fn frame(seq: u32, ft: [f32; 2], mn: f32, n: f32, slip: SlipSignal) -> SensorFrame {

@@ -34,7 +34,7 @@ pub use sweep::{FlsTable, SweepMap};
 use crate::error::{check, ConfigError};
 use crate::pressure::KProfile;
 use crate::quadrature::{QuadratureOrder, TanhSinh, MAX_NODES_PER_SIDE};
-use crate::real::Real;
+use crate::real::{Real, SqrtFn};
 use crate::skew::SkewLaw;
 
 /// Beyond this `d = d_c/a` (times the patch's radius of gyration) a point is returned as the
@@ -116,6 +116,7 @@ pub struct FlsModel<T> {
     rule: TanhSinh<T>,
     rect_cache: [T; 2 * MAX_NODES_PER_SIDE + 1],
     far_d: T,
+    sqrt: SqrtFn<T>,
 }
 
 impl<T: Real> FlsModel<T> {
@@ -165,7 +166,15 @@ impl<T: Real> FlsModel<T> {
             rule,
             rect_cache,
             far_d,
+            sqrt: SqrtFn::LIBM,
         })
+    }
+
+    /// The same model with `sqrt` as its kernels' square root (see [`SqrtFn`]): the same
+    /// points bit for bit, at another cost.
+    pub(crate) fn with_sqrt(mut self, sqrt: SqrtFn<T>) -> Self {
+        self.sqrt = sqrt;
+        self
     }
 
     /// The configuration this model was built from.
@@ -219,7 +228,15 @@ impl<T: Real> FlsModel<T> {
             Patch::Rect { lambda } => {
                 let delta = self.skew.map_or(T::zero(), |s| s.delta_y(d));
                 let cache = (delta <= T::zero()).then_some(&self.rect_cache[..]);
-                rect::point(&self.rule, &self.profile, lambda, delta, d, cache)
+                rect::point(
+                    &self.rule,
+                    &self.profile,
+                    lambda,
+                    delta,
+                    d,
+                    cache,
+                    self.sqrt,
+                )
             }
             Patch::Disc => match self.skew {
                 None => disc::symmetric_point(&self.rule, &self.profile, d),

@@ -16,18 +16,18 @@
 
 use crate::pressure::KProfile;
 use crate::quadrature::{QuadPoint, TanhSinh};
-use crate::real::Real;
+use crate::real::{Real, SqrtFn};
 
 /// The three row kernels `[y·D, 1/S, M]` at height `y` for half-length `λ` and centre of
-/// rotation `d ≥ 0`.
+/// rotation `d ≥ 0`, with `sqrt` for the two row lengths.
 #[inline]
-pub(crate) fn row_kernels<T: Real>(lambda: T, d: T, y: T) -> [T; 3] {
+pub(crate) fn row_kernels<T: Real>(lambda: T, d: T, y: T, sqrt: SqrtFn<T>) -> [T; 3] {
     let ay = y.abs();
     let y2 = y * y;
     let au1 = lambda + d;
     let u2 = lambda - d;
-    let r1 = (au1 * au1 + y2).libm_sqrt();
-    let r2 = (u2 * u2 + y2).libm_sqrt();
+    let r1 = sqrt.sqrt(au1 * au1 + y2);
+    let r2 = sqrt.sqrt(u2 * u2 + y2);
     let s = r1 + r2;
     let (y_d, y2_d) = if y2 == T::zero() {
         (T::zero(), T::zero())
@@ -56,7 +56,7 @@ pub(crate) fn row_kernels<T: Real>(lambda: T, d: T, y: T) -> [T; 3] {
 /// pressure peak at `y = δ ∈ [0, 1)` (the skew; 0 for the symmetric profile).
 ///
 /// `cache`, when given, holds `g(y)` at the rule's nodes on `[0, 1]` for the symmetric
-/// profile, saving the shape evaluations.
+/// profile, saving the shape evaluations; `sqrt` is the kernels' square root.
 pub(crate) fn point<T: Real>(
     rule: &TanhSinh<T>,
     profile: &KProfile<T>,
@@ -64,6 +64,7 @@ pub(crate) fn point<T: Real>(
     delta: T,
     d: T,
     cache: Option<&[T]>,
+    sqrt: SqrtFn<T>,
 ) -> (T, T) {
     let c_k = T::of(profile.rect_constant());
     let pi = T::PI();
@@ -77,7 +78,7 @@ pub(crate) fn point<T: Real>(
                 Some(&g) => g,
                 None => profile.shape(pt.from_lo, pt.to_hi),
             };
-            let k = row_kernels(lambda, d, pt.x);
+            let k = row_kernels(lambda, d, pt.x, sqrt);
             let wg = w * g;
             acc[1] = acc[1] + wg * k[1];
             acc[2] = acc[2] + wg * k[2];
@@ -88,7 +89,7 @@ pub(crate) fn point<T: Real>(
         let below = one + delta;
         let above = one - delta;
         let kern = |g: T, y: T| {
-            let k = row_kernels(lambda, d, y);
+            let k = row_kernels(lambda, d, y, sqrt);
             [g * k[0], g * k[1], g * k[2]]
         };
         // [-1, 0]: below the peak, distance to the edge is from_lo.

@@ -7,23 +7,25 @@ use crate::controller::config::{ControllerConfig, FingerShape, Mode};
 use crate::error::{check, ConfigError};
 use crate::fls::{FlsConfig, FlsModel, FlsTable, InscribedEllipse};
 use crate::quadrature::QuadratureOrder;
-use crate::real::Real;
+use crate::real::{Real, SqrtFn};
 
 impl<T: Real> Capacity<T> {
     /// Precomputes the grid for `cfg` (already validated by
     /// [`ControllerConfig::validate`]), computing in `P` and storing in `T`.
     pub fn build<P: Real>(cfg: &ControllerConfig) -> Result<Self, ConfigError> {
         let mut cap = Self::blank();
-        cap.build_into::<P>(cfg)?;
+        cap.build_into::<P>(cfg, SqrtFn::LIBM)?;
         Ok(cap)
     }
 
     /// [`Capacity::build`] into `self`, in place (no copy of the grid on the stack: the
     /// device builds its controllers this way). On an error `self` is left half-built
-    /// and must be built again before use.
+    /// and must be built again before use. `sqrt` is the limit-surface kernels' square
+    /// root (see [`SqrtFn`]).
     pub(crate) fn build_into<P: Real>(
         &mut self,
         cfg: &ControllerConfig,
+        sqrt: SqrtFn<P>,
     ) -> Result<(), ConfigError> {
         let nodes = usize::from(cfg.force_nodes);
         if !(2..=MAX_FORCE_NODES).contains(&nodes) {
@@ -39,7 +41,8 @@ impl<T: Real> Capacity<T> {
             k: cfg.k,
             skew: cfg.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
             order: QuadratureOrder::new(usize::from(cfg.quadrature_order))?,
-        })?;
+        })?
+        .with_sqrt(sqrt);
         let varying = cfg.shape == FingerShape::Rect && cfg.gamma > 0.0;
         let aspect_of = |a: P| (P::of(cfg.half_length_m) / a).to_f64();
         let fixed_pitch = if varying {

@@ -9,7 +9,7 @@ use crate::controller::lead::Lead;
 use crate::controller::math::TickMath;
 use crate::controller::slip::SlipResponse;
 use crate::error::ConfigError;
-use crate::real::Real;
+use crate::real::{Real, SqrtFn};
 use core::marker::PhantomData;
 
 /// The largest plausible step between two good timestamps [µs]: 1 s, or four tick
@@ -101,7 +101,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         config: ControllerConfig,
     ) -> Result<(), ConfigError> {
         config.validate()?;
-        self.capacity.build_into::<P>(&config)?;
+        self.capacity
+            .build_into::<P>(&config, SqrtFn::new(M::startup_sqrt::<P>()))?;
         self.set_config(config);
         Ok(())
     }

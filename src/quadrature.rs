@@ -84,10 +84,20 @@ pub(crate) struct QuadPoint<T> {
 }
 
 impl<T: Real> TanhSinh<T> {
-    /// Builds the rule: nodes computed in f64, stored in `T`. The truncation point
-    /// `t_max` is where the weights fall below the precision of `T` (3.2 for f64, 2.4 for
-    /// f32), and the step is `t_max / n`.
-    pub fn new(order: QuadratureOrder) -> Self {
+    /// A rule with no nodes (every integral 0), to [`TanhSinh::set_order`] into.
+    #[inline(always)]
+    pub fn empty() -> Self {
+        Self {
+            nodes: [Node::default(); MAX_NODES_PER_SIDE + 1],
+            len: 0,
+        }
+    }
+
+    /// Builds the rule of `order` in place (1 KB in f32: the start-up builds it where it
+    /// lies rather than moving it): nodes computed in f64, stored in `T`. The truncation
+    /// point `t_max` is where the weights fall below the precision of `T` (3.2 for f64, 2.4
+    /// for f32), and the step is `t_max / n`.
+    pub fn set_order(&mut self, order: QuadratureOrder) {
         let n = order.nodes_per_side.min(MAX_NODES_PER_SIDE);
         let t_max = if T::epsilon().to_f64() < 1e-10 {
             3.2
@@ -96,8 +106,8 @@ impl<T: Real> TanhSinh<T> {
         };
         let h = t_max / n as f64;
         let half_pi = core::f64::consts::FRAC_PI_2;
-        let mut nodes = [Node::default(); MAX_NODES_PER_SIDE + 1];
-        for (j, node) in nodes.iter_mut().enumerate().take(n + 1) {
+        self.nodes.fill(Node::default());
+        for (j, node) in self.nodes.iter_mut().enumerate().take(n + 1) {
             let t = j as f64 * h;
             let u = half_pi * libm::sinh(t);
             let comp = 2.0 / (libm::exp(2.0 * u) + 1.0);
@@ -108,7 +118,7 @@ impl<T: Real> TanhSinh<T> {
                 weight: T::of(weight),
             };
         }
-        Self { nodes, len: n + 1 }
+        self.len = n + 1;
     }
 
     /// `∫_lo^hi f` for a vector-valued integrand of `D` components. Returns zeros for an

@@ -17,7 +17,7 @@ mod stress_cases;
 use softgrip::contact::ContactSize;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
-    UTILISATION_MAX,
+    MAX_ILLINOIS_ITERATIONS_F32, UTILISATION_MAX,
 };
 use softgrip::partial_slip::{deflection_m, stick_radius, Elasticity};
 use softgrip::skew::SkewLaw;
@@ -722,18 +722,21 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
                     let sf32 = f64::from(c32.capacity().demand_scale()[0]);
                     for n in [1.2e-9, 1.6e-9, 3e-9, 1e-8, 1e-7, 1e-6, 1.0, 5e5] {
                         let f = n * cfg.mu / cfg.safety;
-                        let got = f64::from(
-                            c32.required_force(f as f32, 0.0, cfg.safety as f32)
-                                .unwrap()
-                                .force_n,
-                        );
+                        let sol = c32
+                            .required_force(f as f32, 0.0, cfg.safety as f32)
+                            .unwrap();
+                        let got = f64::from(sol.force_n);
                         let want = n * sf32;
+                        // A solve stopped by the f32 iteration cap returns its bracket's
+                        // upper end: conservative, by up to 1 % on this coarse grid
+                        // (tests/controller.rs, `the_f32_iteration_cap_...`).
+                        let at_cap = sol.iterations >= MAX_ILLINOIS_ITERATIONS_F32;
                         rows.push(Row::band(
                             format!("{shape:?} γ={gamma:.3} translation N={want:e} f32"),
                             got / want - 1.0,
                             0.0,
                             -1e-6,
-                            if want < 5e-9 {
+                            if want < 5e-9 || at_cap {
                                 1e-2
                             } else if want < 5e-8 {
                                 1e-4

@@ -123,6 +123,27 @@ impl<T: Real> FlsModel<T> {
     /// Validates the configuration (parameter names `aspect`, `k`, `skew`, `alpha`, `locus`)
     /// and precomputes the quadrature rule.
     pub fn new(config: FlsConfig) -> Result<Self, ConfigError> {
+        let mut model = Self::unfilled(config)?;
+        model.fill();
+        Ok(model)
+    }
+
+    /// [`FlsModel::new`] into `slot`, in place: the quadrature rule and the cached pressure
+    /// values (2 KB in f32) are computed where they lie rather than moved there (the
+    /// controller's start-up, whose peak stack this is part of). On an error `slot` is
+    /// unchanged.
+    pub(crate) fn build_in(
+        slot: &mut Option<Self>,
+        config: FlsConfig,
+    ) -> Result<&mut Self, ConfigError> {
+        let model = slot.insert(Self::unfilled(config)?);
+        model.fill();
+        Ok(model)
+    }
+
+    /// The validated model with an empty rule and cache.
+    #[inline(always)]
+    fn unfilled(config: FlsConfig) -> Result<Self, ConfigError> {
         let profile = KProfile::new(config.k)?;
         let patch = match config.shape {
             Shape::Rect { aspect } => {
@@ -154,27 +175,29 @@ impl<T: Real> FlsModel<T> {
                 (delta > 0.0).then_some(law)
             }
         };
-        let rule = TanhSinh::new(config.order);
-        let mut rect_cache = [T::zero(); 2 * MAX_NODES_PER_SIDE + 1];
-        rect::shape_cache(&rule, &profile, &mut rect_cache);
         let far_d = T::of(FAR_FIELD_D) * SweepMap::<T>::for_shape(config.shape).scale();
         Ok(Self {
             config,
             patch,
             profile,
             skew,
-            rule,
-            rect_cache,
+            rule: TanhSinh::empty(),
+            rect_cache: [T::zero(); 2 * MAX_NODES_PER_SIDE + 1],
             far_d,
             sqrt: SqrtFn::LIBM,
         })
     }
 
-    /// The same model with `sqrt` as its kernels' square root (see [`SqrtFn`]): the same
-    /// points bit for bit, at another cost.
-    pub(crate) fn with_sqrt(mut self, sqrt: SqrtFn<T>) -> Self {
+    /// Computes the rule and the cache of an [`FlsModel::unfilled`] model.
+    fn fill(&mut self) {
+        self.rule.set_order(self.config.order);
+        rect::shape_cache(&self.rule, &self.profile, &mut self.rect_cache);
+    }
+
+    /// Makes `sqrt` the kernels' square root (see [`SqrtFn`]): the same points bit for
+    /// bit, at another cost.
+    pub(crate) fn set_sqrt(&mut self, sqrt: SqrtFn<T>) {
         self.sqrt = sqrt;
-        self
     }
 
     /// The configuration this model was built from.
@@ -183,8 +206,18 @@ impl<T: Real> FlsModel<T> {
     }
 
     /// The same model for another aspect ratio `l/a` (rectangle only; the disc ignores it).
+    /// A copy of the model (about 2 KB in f32): the start-up uses
+    /// [`FlsModel::set_aspect`] instead.
     pub fn with_aspect(&self, aspect: f64) -> Result<Self, ConfigError> {
         let mut next = self.clone();
+        next.set_aspect(aspect)?;
+        Ok(next)
+    }
+
+    /// Changes the aspect ratio `l/a` in place (rectangle only; the disc ignores it). The
+    /// quadrature rule and the cached pressure values do not depend on it. On an error
+    /// (parameter `aspect`: not positive and finite) the model is unchanged.
+    pub fn set_aspect(&mut self, aspect: f64) -> Result<(), ConfigError> {
         if let Patch::Rect { .. } = self.patch {
             check(
                 "aspect",
@@ -192,13 +225,13 @@ impl<T: Real> FlsModel<T> {
                 aspect > 0.0 && aspect.is_finite(),
                 "aspect > 0",
             )?;
-            next.patch = Patch::Rect {
+            self.patch = Patch::Rect {
                 lambda: T::of(aspect),
             };
-            next.config.shape = Shape::Rect { aspect };
-            next.far_d = T::of(FAR_FIELD_D) * SweepMap::<T>::for_shape(next.config.shape).scale();
+            self.config.shape = Shape::Rect { aspect };
+            self.far_d = T::of(FAR_FIELD_D) * SweepMap::<T>::for_shape(self.config.shape).scale();
         }
-        Ok(next)
+        Ok(())
     }
 
     /// The pressure profile.

@@ -76,6 +76,27 @@ impl<T: Real, const CAP: usize> FlsTable<T, CAP> {
     /// closes the table with the exact translation limit `(1, 0)` at `t = 1`: the table holds
     /// `samples + 1` points. Fails (parameter `samples`) unless `2 ≤ samples < CAP`.
     pub fn sweep(model: &FlsModel<T>, samples: usize) -> Result<Self, ConfigError> {
+        let mut table = Self::empty(model.config().shape);
+        table.resweep(model, samples)?;
+        Ok(table)
+    }
+
+    /// A table with no points, to [`FlsTable::resweep`] into.
+    pub(crate) fn empty(shape: Shape) -> Self {
+        Self {
+            points: Vec::new(),
+            map: SweepMap::for_shape(shape),
+        }
+    }
+
+    /// [`FlsTable::sweep`] in place, replacing the points (the start-up sweeps one table
+    /// per aspect ratio into the same storage). On an error the table is left empty.
+    pub(crate) fn resweep(
+        &mut self,
+        model: &FlsModel<T>,
+        samples: usize,
+    ) -> Result<(), ConfigError> {
+        self.points.clear();
         if samples < 2 || samples >= CAP {
             return Err(ConfigError::Capacity {
                 param: "samples",
@@ -87,20 +108,19 @@ impl<T: Real, const CAP: usize> FlsTable<T, CAP> {
                 },
             });
         }
-        let map = SweepMap::for_shape(model.config().shape);
-        let mut points = Vec::new();
+        self.map = SweepMap::for_shape(model.config().shape);
         for i in 0..samples {
             let t = T::of_usize(i) / T::of_usize(samples);
-            let p = model.point(map.d_of(t));
-            points.push(p).map_err(|_| capacity(samples, CAP))?;
+            let p = model.point(self.map.d_of(t));
+            self.points.push(p).map_err(|_| capacity(samples, CAP))?;
         }
         let end = FlsPoint {
             d: T::infinity(),
             f: T::one(),
             m: T::zero(),
         };
-        points.push(end).map_err(|_| capacity(samples, CAP))?;
-        Ok(Self { points, map })
+        self.points.push(end).map_err(|_| capacity(samples, CAP))?;
+        Ok(())
     }
 
     /// The stored points, from `d = 0` to `d = ∞`.

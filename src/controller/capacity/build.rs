@@ -36,20 +36,25 @@ impl<T: Real> Capacity<T> {
             });
         }
         let contact = ContactSize::<P>::new(cfg.c_m_per_n_gamma, cfg.gamma)?;
-        let model = FlsModel::<P>::new(FlsConfig {
-            shape: cfg.fls_shape(1.0),
-            k: cfg.k,
-            skew: cfg.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
-            order: QuadratureOrder::new(usize::from(cfg.quadrature_order))?,
-        })?
-        .with_sqrt(sqrt);
+        let mut slot = None;
+        let model = FlsModel::<P>::build_in(
+            &mut slot,
+            FlsConfig {
+                shape: cfg.fls_shape(1.0),
+                k: cfg.k,
+                skew: cfg.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
+                order: QuadratureOrder::new(usize::from(cfg.quadrature_order))?,
+            },
+        )?;
+        model.set_sqrt(sqrt);
         let varying = cfg.shape == FingerShape::Rect && cfg.gamma > 0.0;
         let aspect_of = |a: P| (P::of(cfg.half_length_m) / a).to_f64();
         let fixed_pitch = if varying {
             P::zero()
         } else {
             let a = contact.half_width_m(P::of(cfg.n_min_n));
-            model.with_aspect(aspect_of(a))?.pitch()
+            model.set_aspect(aspect_of(a))?;
+            model.pitch()
         };
 
         self.clear();
@@ -69,7 +74,8 @@ impl<T: Real> Capacity<T> {
             };
             let a = contact.half_width_m(n);
             let pitch = if varying {
-                model.with_aspect(aspect_of(a))?.pitch()
+                model.set_aspect(aspect_of(a))?;
+                model.pitch()
             } else {
                 fixed_pitch
             };
@@ -87,9 +93,9 @@ impl<T: Real> Capacity<T> {
         cap.fill_inv_width();
         check_range(cfg, cap)?;
         match cfg.mode {
-            Mode::Table => cap.build_shapes(cfg, &model, &contact, varying)?,
+            Mode::Table => cap.build_shapes(cfg, model, &contact, varying)?,
             Mode::Ellipse => {
-                let e = inscribed_ellipse(cfg, &model, &contact, varying)?;
+                let e = inscribed_ellipse(cfg, model, &contact, varying)?;
                 cap.demand_scale = [
                     T::of(e.x_semi_axis.recip().to_f64()),
                     T::of(e.y_semi_axis.recip().to_f64()),
@@ -112,7 +118,7 @@ impl<T: Real> Capacity<T> {
     fn build_shapes<P: Real>(
         &mut self,
         cfg: &ControllerConfig,
-        model: &FlsModel<P>,
+        model: &mut FlsModel<P>,
         contact: &ContactSize<P>,
         varying: bool,
     ) -> Result<(), ConfigError> {
@@ -157,13 +163,16 @@ impl<T: Real> Capacity<T> {
                 *p = T::of(pos.to_f64());
             }
         }
+        // One table (1.5 KB in f32), swept again for each aspect.
+        let mut table = FlsTable::<P, { MAX_TABLE_SAMPLES + 1 }>::empty(model.config().shape);
         for e in 0..shapes {
-            let entry = if varying {
-                model.with_aspect((ln_lo + ln_step * P::of_usize(e)).libm_exp().to_f64())?
+            let aspect = if varying {
+                (ln_lo + ln_step * P::of_usize(e)).libm_exp()
             } else {
-                model.with_aspect((l / contact.half_width_m(P::of(cfg.n_min_n))).to_f64())?
+                l / contact.half_width_m(P::of(cfg.n_min_n))
             };
-            let table = FlsTable::<P, { MAX_TABLE_SAMPLES + 1 }>::sweep(&entry, samples)?;
+            model.set_aspect(aspect.to_f64())?;
+            table.resweep(model, samples)?;
             if !table.is_star_shaped() {
                 let locus = cfg.skew.map_or(0.0, |s| s.locus_over_a);
                 return Err(ConfigError::OutOfRange {
@@ -230,15 +239,16 @@ pub const INSCRIBED_SAMPLES: usize = 32;
 /// [`INSCRIBED_SAMPLES`] (one for the disc and `γ = 0`).
 fn inscribed_ellipse<P: Real>(
     cfg: &ControllerConfig,
-    model: &FlsModel<P>,
+    model: &mut FlsModel<P>,
     contact: &ContactSize<P>,
     varying: bool,
 ) -> Result<InscribedEllipse<P>, ConfigError> {
     let l = P::of(cfg.half_length_m);
     let aspect = |n: f64| (l / contact.half_width_m(P::of(n))).to_f64();
     let (hi, lo) = (aspect(cfg.n_min_n), aspect(cfg.n_max_n));
-    let sweep = |a: f64| -> Result<FlsTable<P, { INSCRIBED_SAMPLES + 1 }>, ConfigError> {
-        FlsTable::sweep(&model.with_aspect(a)?, INSCRIBED_SAMPLES)
+    let mut sweep = |a: f64| -> Result<FlsTable<P, { INSCRIBED_SAMPLES + 1 }>, ConfigError> {
+        model.set_aspect(a)?;
+        FlsTable::sweep(model, INSCRIBED_SAMPLES)
     };
     let first = sweep(hi)?;
     let fitted = if varying {

@@ -60,7 +60,10 @@ pub const MAX_ILLINOIS_ITERATIONS: u8 = 16;
 /// the cap is one above that; it bounds the worst tick, which the README's cost table
 /// measures with every solve run to this cap (the `solve-to-cap` feature). A solve that
 /// reaches a cap returns the upper end of its bracket, where the load holds: more force
-/// than the tolerance would give, never less.
+/// than the tolerance would give, never less. On the default grid no solve reaches it; on
+/// a grid 5.6 times coarser in `ln N` (64 nodes over 1e-9 to 1e6 N) 39 % do, asking at most
+/// 0.14 % more force than the converged f64 answer (`tests/controller.rs`,
+/// `the_f32_iteration_cap_costs_...`).
 pub const MAX_ILLINOIS_ITERATIONS_F32: u8 = 6;
 
 /// The iteration cap of one solve in `T`: [`MAX_ILLINOIS_ITERATIONS_F32`] for f32,

@@ -358,14 +358,17 @@ fn required_force_at_the_corners_of_the_domain() {
                             assert!((floor..=1e6).contains(&cmd), "{case}: {v}");
                             assert_eq!(v["status"] == "saturated", n > 1e6, "{case}: {v}");
                             // micromath's sqrt errs by up to 6 % either way, differently
-                            // for N_slip and N_req.
-                            let rel = match (precision, math) {
-                                ("f64", _) => 1e-12,
-                                (_, "libm") => 1e-6,
-                                _ => 0.07,
+                            // for N_slip and N_req. An f32 solve stopped by its iteration
+                            // cap (on this grid, 5.6 times coarser than the default) returns
+                            // its bracket's upper end, up to 0.14 % high (tests/controller.rs,
+                            // `the_f32_iteration_cap_...`): N_req may then exceed s·N_slip.
+                            let (rel, rel_up) = match (precision, math) {
+                                ("f64", _) => (1e-12, 1e-12),
+                                (_, "libm") => (1e-6, 2e-3),
+                                _ => (0.07, 0.07),
                             };
                             assert!(
-                                n >= slip * (1.0 - rel) && n <= 1.3 * slip * (1.0 + rel),
+                                n >= slip * (1.0 - rel) && n <= 1.3 * slip * (1.0 + rel_up),
                                 "{case}: {v}"
                             );
                             let ft: f64 = ft.parse().unwrap();

@@ -51,8 +51,10 @@ for t in "${targets[@]}"; do
         -artifact_prefix="artifacts/$t/" >"$log" 2>&1
     rc=$?
     set -e
-    runs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n 1)"
-    secs="$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' | tail -n 1)"
+    # A run that ends early (a crash, an interrupt) has no "Done" line: `|| true` keeps
+    # `set -e` from ending the script before it prints the row.
+    runs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n 1 || true)"
+    secs="$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' | tail -n 1 || true)"
     corpus="$(find "corpus/$t" -type f | wc -l)"
     after="$(find "artifacts/$t" -type f | wc -l)"
     new=$((after - before))

@@ -129,15 +129,17 @@ impl Real for f32 {
 /// ([`TickMath::startup_sqrt`](crate::controller::TickMath::startup_sqrt): the firmware's
 /// `VSQRT`). Both are correctly rounded, so the precomputed grid is the same bit for bit;
 /// only the cost differs (on the M4F, one instruction instead of libm's software routine).
+/// An `extern "C"` function cannot unwind, so the call through the pointer keeps the
+/// start-up's no-panic proof (`scripts/no-panic.sh`, `controller_new`).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct SqrtFn<T>(Option<fn(T) -> T>);
+pub(crate) struct SqrtFn<T>(Option<extern "C" fn(T) -> T>);
 
 impl<T: Real> SqrtFn<T> {
     /// `libm`'s.
     pub(crate) const LIBM: Self = Self(None);
 
     /// `f` where given, else `libm`'s.
-    pub(crate) fn new(f: Option<fn(T) -> T>) -> Self {
+    pub(crate) fn new(f: Option<extern "C" fn(T) -> T>) -> Self {
         Self(f)
     }
 

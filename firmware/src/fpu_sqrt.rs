@@ -42,6 +42,11 @@ pub fn vsqrt(x: f32) -> f32 {
     f32::from_bits(bits)
 }
 
+/// [`vsqrt`] behind a pointer the start-up can call (`extern "C"`: it cannot unwind).
+extern "C" fn vsqrt_c(x: f32) -> f32 {
+    vsqrt(x)
+}
+
 impl TickMath<f32> for FpuSqrt {
     const NAME: &'static str = "fpu";
     #[inline(always)]
@@ -52,10 +57,10 @@ impl TickMath<f32> for FpuSqrt {
     /// `VSQRT` for an f32 start-up too (the limit-surface kernels take two square roots
     /// per quadrature node); an f64 start-up (`precompute-f64`) keeps libm's, as the M4F
     /// has no double-precision FPU.
-    fn startup_sqrt<P: Real>() -> Option<fn(P) -> P> {
-        let f: fn(f32) -> f32 = vsqrt;
+    fn startup_sqrt<P: Real>() -> Option<extern "C" fn(P) -> P> {
+        let f: extern "C" fn(f32) -> f32 = vsqrt_c;
         (&f as &dyn core::any::Any)
-            .downcast_ref::<fn(P) -> P>()
+            .downcast_ref::<extern "C" fn(P) -> P>()
             .copied()
     }
 }

@@ -1,6 +1,9 @@
 //! The controller: the rule of docs/model.md against closed forms and an exact f64 reference,
 //! its properties, and its behaviour on hostile input.
 
+#[path = "common/stress_cases.rs"]
+mod stress_cases;
+
 use proptest::prelude::*;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
@@ -718,57 +721,36 @@ fn solves_stay_far_below_the_iteration_cap() {
 /// (here the f64 controller's, on the same loads), and at most 1 % above it.
 #[test]
 fn the_f32_iteration_cap_costs_at_most_one_percent_of_force_and_never_under_asks() {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut uniform = |lo: f64, hi: f64| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        lo + (hi - lo) * (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = stress_cases::SplitMix(0x2545_f491_4f6c_dd1d);
     let (mut capped, mut worst) = (0u32, 0.0f64);
     for (shape, mode, gamma) in [FingerShape::Rect, FingerShape::Disc]
         .into_iter()
         .flat_map(|s| [Mode::Ellipse, Mode::Table].map(|m| (s, m)))
         .flat_map(|(s, m)| [0.0, 1.0 / 3.0, 0.5].map(|g| (s, m, g)))
     {
-        {
-            let cfg = ControllerConfig {
-                shape,
-                mode,
-                gamma,
-                n_min_n: 1e-9,
-                n_max_n: 1e6,
-                fault_force_n: 1.0,
-                force_nodes: 64,
-                aspect_count: 12,
-                force_range_n: 1e7,
-                moment_range_nm: 1e4,
-                ..ControllerConfig::default()
+        let cfg = stress_cases::corner_grid_config(shape, mode, gamma);
+        let c32 = Controller::<f32>::new_precomputed_in::<f64>(cfg).unwrap();
+        let c64 = Controller::<f64>::new(cfg).unwrap();
+        for _ in 0..5_000 {
+            let f = rng.log_uniform(1e-8, 1e5) as f32;
+            // A fifth of them pure translations.
+            let m = if rng.uniform(0.0, 1.0) < 0.2 {
+                0.0
+            } else {
+                rng.log_uniform(1e-11, 1e2) as f32
             };
-            let c32 = Controller::<f32>::new_precomputed_in::<f64>(cfg).unwrap();
-            let c64 = Controller::<f64>::new(cfg).unwrap();
-            for _ in 0..5_000 {
-                let f = 10f64.powf(uniform(-8.0, 5.0));
-                // A fifth of them pure translations.
-                let m = if uniform(0.0, 1.0) < 0.2 {
-                    0.0
-                } else {
-                    10f64.powf(uniform(-11.0, 2.0))
-                };
-                let (f, m) = (f as f32, m as f32);
-                let s32 = c32.required_force(f, m, 1.3).unwrap();
-                let s64 = c64.required_force(f64::from(f), f64::from(m), 1.3).unwrap();
-                let rel = f64::from(s32.force_n) / s64.force_n - 1.0;
-                if s32.iterations >= MAX_ILLINOIS_ITERATIONS_F32 {
-                    capped += 1;
-                    worst = worst.max(rel);
-                    // At the cap: the bracket's upper end, above the converged answer
-                    // (up to the f32 grid's own rounding, 1e-5).
-                    assert!(
-                        rel > -1e-5 && rel < 1e-2,
-                        "{shape:?} {mode:?} γ={gamma}: f {f:e} m {m:e}: {rel:e}"
-                    );
-                }
+            let s32 = c32.required_force(f, m, 1.3).unwrap();
+            let s64 = c64.required_force(f64::from(f), f64::from(m), 1.3).unwrap();
+            let rel = f64::from(s32.force_n) / s64.force_n - 1.0;
+            if s32.iterations >= MAX_ILLINOIS_ITERATIONS_F32 {
+                capped += 1;
+                worst = worst.max(rel);
+                // At the cap: the bracket's upper end, above the converged answer (up to
+                // the f32 grid's own rounding, 1e-5).
+                assert!(
+                    rel > -1e-5 && rel < 1e-2,
+                    "{shape:?} {mode:?} γ={gamma}: f {f:e} m {m:e}: {rel:e}"
+                );
             }
         }
     }

@@ -697,19 +697,7 @@ fn normal_forces_from_1e_9_to_1e6_newtons() {
     for shape in [FingerShape::Rect, FingerShape::Disc] {
         for gamma in [1.0 / 3.0, 0.5] {
             for mode in [Mode::Ellipse, Mode::Table] {
-                let cfg = ControllerConfig {
-                    shape,
-                    gamma,
-                    mode,
-                    n_min_n: 1e-9,
-                    n_max_n: 1e6,
-                    fault_force_n: 1.0,
-                    force_nodes: 64,
-                    aspect_count: 12,
-                    force_range_n: 1e7,
-                    moment_range_nm: 1e4,
-                    ..ControllerConfig::default()
-                };
+                let cfg = corner_grid_config(shape, mode, gamma);
                 let c64 = Controller::<f64>::new(cfg).unwrap();
                 let c32 = Controller::<f32>::new_precomputed_in::<f64>(cfg).unwrap();
                 let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, gamma).unwrap();

@@ -10,6 +10,24 @@ use softgrip::contact::ContactSize;
 use softgrip::controller::{ControllerConfig, FingerShape, Mode};
 use softgrip::{FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
 
+/// The force grid at the corners of the domain: 64 nodes over 1e-9 to 1e6 N (5.6 times the
+/// default's spacing in `ln N`), 12 aspects, sensor ranges wide enough for every load.
+pub fn corner_grid_config(shape: FingerShape, mode: Mode, gamma: f64) -> ControllerConfig {
+    ControllerConfig {
+        shape,
+        mode,
+        gamma,
+        n_min_n: 1e-9,
+        n_max_n: 1e6,
+        fault_force_n: 1.0,
+        force_nodes: 64,
+        aspect_count: 12,
+        force_range_n: 1e7,
+        moment_range_nm: 1e4,
+        ..ControllerConfig::default()
+    }
+}
+
 /// The Euler beta function `B(a, b) = Γ(a)Γ(b)/Γ(a+b)`, through `ln Γ` (finite for the tiny
 /// arguments `j/k` with `k` up to 1e6 and beyond).
 pub fn beta(a: f64, b: f64) -> f64 {

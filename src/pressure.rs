@@ -6,8 +6,11 @@
 //! Timoshenko–Goodier (Eq. 1) on the rectangle and Hertz on the disc; `k → ∞` (accepted as
 //! `f64::INFINITY`) is uniform pressure.
 
+mod gamma;
+
 use crate::error::{check, ConfigError};
 use crate::real::Real;
+use gamma::gamma_1p;
 
 /// The shape exponent `k ≥ 1` (real; `+∞` means uniform) and its normalising constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,21 +109,21 @@ pub fn rect_constant(k: f64) -> f64 {
         return core::f64::consts::FRAC_PI_2;
     }
     let x = 1.0 / k;
-    let g1 = libm::tgamma(1.0 + x);
-    core::f64::consts::FRAC_PI_2 * libm::tgamma(1.0 + 2.0 * x) / (g1 * g1)
+    let g1 = gamma_1p(x);
+    core::f64::consts::FRAC_PI_2 * gamma_1p(2.0 * x) / (g1 * g1)
 }
 
 /// `∫₀¹ t^j (1 − t^k)^(1/k) dt = B((j+1)/k, 1+1/k)/k` for the disc: `j = 1` is `B_k`, `j = 2`
-/// gives the pitch's numerator. Evaluated with `lgamma` in the form
-/// `Γ(1+(j+1)/k) Γ(1+1/k) / ((j+1) Γ(1+(j+2)/k))`, finite for every `k ≥ 1` and `k = ∞`.
+/// gives the pitch's numerator. Evaluated in the form
+/// `Γ(1+(j+1)/k) Γ(1+1/k) / ((j+1) Γ(1+(j+2)/k))` (arguments at most `1 + (j+2)`, so no
+/// overflow for the `j ≤ 2` the crate uses), finite for every `k ≥ 1` and `k = ∞`; within
+/// about 1e-15 relative.
 pub fn disc_moment(k: f64, j: f64) -> f64 {
     if k.is_infinite() {
         return 1.0 / (j + 1.0);
     }
     let x = 1.0 / k;
-    let ln = libm::lgamma(1.0 + (j + 1.0) * x) + libm::lgamma(1.0 + x)
-        - libm::lgamma(1.0 + (j + 2.0) * x);
-    libm::exp(ln) / (j + 1.0)
+    gamma_1p((j + 1.0) * x) * gamma_1p(x) / ((j + 1.0) * gamma_1p((j + 2.0) * x))
 }
 
 /// Symmetric pressure on the rectangle `[-l, l] × [-a, a]` (Eq. 2), in Pa.

@@ -141,30 +141,39 @@ impl<T: Real> TanhSinh<T> {
                 *a = *a + w * v;
             }
         };
-        let mut nodes = self.nodes.iter().take(self.len);
-        if let Some(centre) = nodes.next() {
-            let v = f(QuadPoint {
-                x: lo + half,
-                from_lo: half,
-                to_hi: half,
-            });
-            add(centre.weight, v);
-        }
-        for node in nodes {
-            let near = half * node.comp;
-            let far = half * (two - node.comp);
-            let v_hi = f(QuadPoint {
-                x: hi - near,
-                from_lo: far,
-                to_hi: near,
-            });
-            let v_lo = f(QuadPoint {
-                x: lo + near,
-                from_lo: near,
-                to_hi: far,
-            });
-            add(node.weight, v_hi);
-            add(node.weight, v_lo);
+        // One call of `f` in the loop, not three (centre, upper and lower point): `f` is
+        // inlined here, so this keeps one copy of each integrand in the firmware instead
+        // of three. Point `i` is the centre for `i = 0`, then node `(i + 1)/2`'s upper
+        // (odd `i`) and lower (even `i`) point, summed in that order.
+        let points = (2 * self.len.min(self.nodes.len())).saturating_sub(1);
+        for i in 0..points {
+            let Some(node) = self.nodes.get(i.div_ceil(2)) else {
+                break;
+            };
+            let p = if i == 0 {
+                QuadPoint {
+                    x: lo + half,
+                    from_lo: half,
+                    to_hi: half,
+                }
+            } else {
+                let near = half * node.comp;
+                let far = half * (two - node.comp);
+                if i % 2 == 1 {
+                    QuadPoint {
+                        x: hi - near,
+                        from_lo: far,
+                        to_hi: near,
+                    }
+                } else {
+                    QuadPoint {
+                        x: lo + near,
+                        from_lo: near,
+                        to_hi: far,
+                    }
+                }
+            };
+            add(node.weight, f(p));
         }
         for a in acc.iter_mut() {
             *a = *a * half;

@@ -93,6 +93,20 @@ pub(crate) fn symmetric_point<T: Real>(rule: &TanhSinh<T>, profile: &KProfile<T>
     ((sums[0] / norm).abs(), (sums[1] / norm).abs())
 }
 
+/// Where a piece of a segment from the peak lies against the segment's closest approach to
+/// the centre of rotation, `s*`: it sets the offset `s − s*` handed to the kernel.
+#[derive(Clone, Copy)]
+enum Piece {
+    /// `[0, s*]`, with `0 < s* < 1`.
+    BeforeApproach,
+    /// `[s*, 1]`, with `0 < s* < 1`.
+    AfterApproach,
+    /// `[0, 1]`, with `s* ≥ 1`.
+    ApproachBeyond,
+    /// `[0, 1]`, with `s* ≤ 0`.
+    ApproachBefore,
+}
+
 /// `(f̃, m̃)` for the disc with the pressure peak at `(px, py)` (inside the unit disc) and the
 /// centre of rotation at `(d, 0)`.
 ///
@@ -148,21 +162,35 @@ pub(crate) fn skewed_point<T: Real>(
             let jac = g * s * jac_psi / r;
             [-jac * qy, jac * qx, jac * (pxs * qx + pys * qy)]
         };
-        if s_star > T::zero() && s_star < one {
-            let a = rule.integrate(T::zero(), s_star, |p: QuadPoint<T>| {
-                kern(p.x, one - p.x, -p.to_hi)
-            });
-            let b = rule.integrate(s_star, one, |p: QuadPoint<T>| kern(p.x, p.to_hi, p.from_lo));
-            [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-        } else if s_star >= one {
-            rule.integrate(T::zero(), one, |p: QuadPoint<T>| {
-                kern(p.x, p.to_hi, -(p.to_hi + (s_star - one)))
-            })
+        // The segment in two pieces, `[0, s*]` and `[s*, 1]`, when the closest approach is
+        // inside it, else `[0, 1]` and an empty piece (which integrates to 0): one call
+        // site for all of them, so the integrand is inlined once.
+        let pieces = if s_star > T::zero() && s_star < one {
+            [
+                (T::zero(), s_star, Piece::BeforeApproach),
+                (s_star, one, Piece::AfterApproach),
+            ]
         } else {
-            rule.integrate(T::zero(), one, |p: QuadPoint<T>| {
-                kern(p.x, p.to_hi, p.from_lo - s_star)
-            })
+            let piece = if s_star >= one {
+                Piece::ApproachBeyond
+            } else {
+                Piece::ApproachBefore
+            };
+            [(T::zero(), one, piece), (one, one, piece)]
+        };
+        let mut sums = [T::zero(); 3];
+        for (lo, hi, piece) in pieces {
+            let part = rule.integrate(lo, hi, |p: QuadPoint<T>| match piece {
+                Piece::BeforeApproach => kern(p.x, one - p.x, -p.to_hi),
+                Piece::AfterApproach => kern(p.x, p.to_hi, p.from_lo),
+                Piece::ApproachBeyond => kern(p.x, p.to_hi, -(p.to_hi + (s_star - one))),
+                Piece::ApproachBefore => kern(p.x, p.to_hi, p.from_lo - s_star),
+            });
+            for (s, v) in sums.iter_mut().zip(part) {
+                *s = *s + v;
+            }
         }
+        sums
     };
     // Pieces of the period: split at ψ_c, at the boundary point nearest the centre of
     // rotation (ψ = 0, where the integrand turns sharply when the centre is near the edge)

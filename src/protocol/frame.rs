@@ -79,6 +79,7 @@ impl core::error::Error for FrameError {}
 /// the encoder is proven free of panics at link time (`scripts/no-panic.sh`).
 ///
 /// On error the contents of `out` are unspecified.
+#[inline(never)]
 pub fn encode<M: Serialize + ?Sized>(msg: &M, out: &mut [u8]) -> Result<usize, FrameError> {
     let raw_len = match postcard::to_slice_crc32(msg, out, CRC.digest()) {
         Ok(bytes) => bytes.len(),
@@ -263,6 +264,7 @@ impl<const N: usize> FrameDecoder<N> {
     /// Takes one received byte. Returns `None` while a frame is incomplete (or the byte
     /// ended an empty frame), and at each delimiter that ends a non-empty frame either
     /// the decoded message or why the frame was dropped (already counted).
+    #[inline(never)]
     pub fn push<M: DeserializeOwned>(&mut self, byte: u8) -> Option<Result<M, FrameError>> {
         let payload_len = match self.push_frame(byte)? {
             Ok(len) => len,

@@ -53,9 +53,17 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// [`Controller::rebuild_from_tables`] builds into (the device keeps two, so that a
     /// new configuration is built in place while the running one ticks on). Never ticked
     /// as it is.
-    #[inline(always)]
     pub(crate) fn blank() -> Self {
-        let mut c = Self {
+        let mut c = Self::unset();
+        c.set_config(ControllerConfig::default());
+        c
+    }
+
+    /// [`Controller::blank`] before its configuration is set: one struct expression, so
+    /// that it can be written straight into its destination.
+    #[inline(always)]
+    fn unset() -> Self {
+        Self {
             config: ControllerConfig::default(),
             capacity: Capacity::blank(),
             inv_mu: T::one(),
@@ -80,17 +88,17 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             bad_ticks: 0,
             slip_node: 0,
             _math: PhantomData,
-        };
-        c.set_config(ControllerConfig::default());
-        c
+        }
     }
 
-    /// Puts [`Controller::blank`] into `slot`. Out of line, so that the blank controller
-    /// is assembled in this short-lived frame, not in the caller's, where it would sit on
-    /// top of the precomputation that follows.
+    /// Puts [`Controller::blank`] into `slot`, written where the slot lies (the struct
+    /// expression straight into it, then the default configuration set in place): no
+    /// 3.3 KB temporary on the stack, under the precomputation that follows. Out of line,
+    /// so that what temporaries there are stay in this short-lived frame.
     #[inline(never)]
     pub(crate) fn blank_into(slot: &mut Option<Self>) {
-        *slot = Some(Self::blank());
+        slot.insert(Self::unset())
+            .set_config(ControllerConfig::default());
     }
 
     /// [`Controller::new_precomputed_in`] into `self`, in place: the grid is written where

@@ -47,20 +47,9 @@ pub(super) fn target_section(out: &mut String, results: &Results) {
                 "Instruction counts were {why}. To measure them: `bash scripts/firmware-setup.sh`, \
                  `bash scripts/firmware-build.sh default precompute-f64 fast-math`, then \
                  `cargo run --release -p host-sim -- accuracy --target` (adds the target's \
-                 start-up and tick instructions to every table). The figures below are **not \
-                 from this run**: they are the README's firmware section (commit 4061240, \
-                 `cargo test --release -p host-sim --test qemu_link -- --nocapture`, 300 \
-                 ticks per mode, default configuration, and `bash scripts/target-costs.sh`, \
-                 all seven scenes).\n"
-            );
-            out.push_str(
-                "| variant | tick median/max, ellipse | tick median/max, table | table start-up |\n\
-                 | --- | --- | --- | --- |\n\
-                 | default (FPU sqrt, f32 precomputation), qemu_link | 1 960 / 2 341 | 3 688 / 5 319 | 8.40 M (ellipse 1.78 M) |\n\
-                 | default, scenes | 1 966 / 2 382 | 3 621 / 4 716 | 2.23 M |\n\
-                 | `soft-sqrt` (libm's software sqrt) | 2 075 / 2 491 | 3 679 / 4 774 | 2.23 M |\n\
-                 | `fast-math` (micromath sqrt) | 2 016 / 2 397 | 3 626 / 4 922 | 2.23 M |\n\
-                 | `precompute-f64` | 2 002 / 2 342 | 3 621 / 4 917 | 46.3 M |\n\n",
+                 start-up and tick instructions to every table). The default firmware's own \
+                 costs, over the worst-case trace of `host-sim/tests/firmware_costs.rs`, are the \
+                 README's generated firmware cost table.\n"
             );
         }
     }
@@ -234,9 +223,9 @@ pub(super) fn pareto_section(out: &mut String, results: &Results) {
     });
     if micro_on_front {
         out.push_str(
-            "A micromath configuration makes a front only because its square root \
-             overestimates: that raises the force and so happens to offset part of the \
-             ellipse's under-ask. It is an error of the opposite sign, not accuracy.\n\n",
+            "A micromath configuration on a front is there by its cost, not its accuracy: \
+             its square root overestimates, which raises the force (the safe side) and adds \
+             to the error.\n\n",
         );
     }
 }

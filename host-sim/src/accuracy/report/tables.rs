@@ -126,18 +126,25 @@ pub(super) fn section_notes(out: &mut String, results: &Results, knob: Knob) {
             );
         }
         Knob::Aspects => {
-            let under: Vec<String> = mode_rows(results, Knob::Aspects, true)
+            let rows = mode_rows(results, Knob::Aspects, true);
+            let under: Vec<String> = rows
                 .iter()
                 .map(|(v, m)| format!("{} at {} aspects", sci(m.under_ask), v.aspects))
                 .collect();
+            let sign = if rows.iter().any(|(_, m)| m.under_ask > 0.0) {
+                format!("as the under-ask column shows: {}", under.join(", "))
+            } else {
+                "though over this run's loads it never asked for less force than the exact \
+                 surface: the under-ask column is 0 at every grid size"
+                    .to_string()
+            };
             let _ = writeln!(
                 out,
                 "Table mode on the rectangle (the disc has one shape). The controller \
                  interpolates the stored surfaces linearly in `ln(l/a)` between the grid's \
-                 aspects. That interpolation is table mode's one unsafe error (the chords and \
-                 the arm interpolation only overstate the force), as the under-ask column \
-                 shows: {}.\n",
-                under.join(", ")
+                 aspects. That interpolation is table mode's one error whose sign is not \
+                 guaranteed (the chords and the arm interpolation only overstate the \
+                 force), {sign}.\n"
             );
             let _ = writeln!(
                 out,

@@ -91,10 +91,12 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         }
     }
 
-    /// Puts [`Controller::blank`] into `slot`, written where the slot lies (the struct
-    /// expression straight into it, then the default configuration set in place): no
-    /// 3.3 KB temporary on the stack, under the precomputation that follows. Out of line,
-    /// so that what temporaries there are stay in this short-lived frame.
+    /// Puts [`Controller::blank`] into `slot`: one struct expression into the slot, then the
+    /// default configuration set in place. The firmware's compiler still assembles the
+    /// struct in this frame before copying it (4 448 B at `opt-level = "s"`), but once,
+    /// where building, configuring and then wrapping a blank in `Some` held it twice
+    /// (7 776 B). Out of line, so that the temporary stays in this short-lived frame and
+    /// is gone before the precomputation that follows.
     #[inline(never)]
     pub(crate) fn blank_into(slot: &mut Option<Self>) {
         slot.insert(Self::unset())

@@ -99,11 +99,7 @@ impl<T: Real> TanhSinh<T> {
     /// for f32), and the step is `t_max / n`.
     pub fn set_order(&mut self, order: QuadratureOrder) {
         let n = order.nodes_per_side.min(MAX_NODES_PER_SIDE);
-        let t_max = if T::epsilon().to_f64() < 1e-10 {
-            3.2
-        } else {
-            2.4
-        };
+        let t_max = if T::SINGLE { 2.4 } else { 3.2 };
         let h = t_max / n as f64;
         let half_pi = core::f64::consts::FRAC_PI_2;
         self.nodes.fill(Node::default());

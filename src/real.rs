@@ -20,6 +20,9 @@ pub trait Real:
 {
     /// Converts an `f64` constant (rounding to nearest for `f32`).
     fn of(x: f64) -> Self;
+    /// `true` for `f32`, the firmware's precision: what the precision-dependent constants
+    /// (the quadrature's truncation, the solve's iteration cap) are chosen by.
+    const SINGLE: bool;
     /// Widens to `f64` (exact for both implementations).
     fn to_f64(self) -> f64;
     /// Converts a count.
@@ -102,6 +105,7 @@ macro_rules! libm_methods {
 
 impl Real for f64 {
     libm_methods!(log, exp, pow, sqrt, hypot, atan2, cbrt, expm1, log1p, tanh, sincos);
+    const SINGLE: bool = false;
     #[inline(always)]
     fn of(x: f64) -> Self {
         x
@@ -114,6 +118,7 @@ impl Real for f64 {
 
 impl Real for f32 {
     libm_methods!(logf, expf, powf, sqrtf, hypotf, atan2f, cbrtf, expm1f, log1pf, tanhf, sincosf);
+    const SINGLE: bool = true;
     #[inline(always)]
     fn of(x: f64) -> Self {
         x as f32

@@ -300,11 +300,7 @@ fn compute<T: Real, M: TickMath<T>>(
         status: status.name(),
         command: command.to_f64(),
         mode: cfg.mode.name(),
-        precision: if core::mem::size_of::<T>() == 4 {
-            "f32"
-        } else {
-            "f64"
-        },
+        precision: if T::SINGLE { "f32" } else { "f64" },
         math: M::NAME,
         ellipse_axes: {
             let [sf, sm] = ctl.capacity().demand_scale();

@@ -69,7 +69,7 @@ pub const MAX_ILLINOIS_ITERATIONS_F32: u8 = 6;
 /// The iteration cap of one solve in `T`: [`MAX_ILLINOIS_ITERATIONS_F32`] for f32,
 /// [`MAX_ILLINOIS_ITERATIONS`] for f64.
 pub fn max_illinois_iterations<T: Real>() -> u8 {
-    if T::epsilon() > T::of(1e-10) {
+    if T::SINGLE {
         MAX_ILLINOIS_ITERATIONS_F32
     } else {
         MAX_ILLINOIS_ITERATIONS

@@ -206,7 +206,9 @@ proptest! {
 enum Piece {
     /// A well-formed request.
     Request(Request),
-    /// A well-formed request's frame with one byte overwritten.
+    /// A well-formed request's frame with one byte changed: XOR with a nonzero mask, so the
+    /// byte always differs (an overwrite with the byte's own value left the frame intact,
+    /// and the device rightly obeyed it).
     Damaged(Request, prop::sample::Index, u8),
     /// Raw bytes.
     Raw(Vec<u8>),
@@ -266,7 +268,7 @@ fn arb_request() -> impl Strategy<Value = Request> {
 fn arb_piece() -> impl Strategy<Value = Piece> {
     prop_oneof![
         6 => arb_request().prop_map(Piece::Request),
-        2 => (arb_request(), any::<prop::sample::Index>(), any::<u8>())
+        2 => (arb_request(), any::<prop::sample::Index>(), 1u8..=255)
             .prop_map(|(r, i, b)| Piece::Damaged(r, i, b)),
         2 => prop::collection::vec(any::<u8>(), 0..400).prop_map(Piece::Raw),
     ]
@@ -296,10 +298,10 @@ proptest! {
                     }
                     bytes.extend(frame(r));
                 }
-                Piece::Damaged(r, at, b) => {
+                Piece::Damaged(r, at, mask) => {
                     let mut f = frame(r);
                     let i = at.index(f.len());
-                    f[i] = *b;
+                    f[i] ^= *mask;
                     bytes.extend(f);
                 }
                 Piece::Raw(raw) => bytes.extend(raw),
@@ -377,4 +379,64 @@ fn values_beyond_f32_are_accepted() {
         });
         assert!(o.required_n.is_finite() && o.n_slip_n.is_finite(), "{o:?}");
     }
+}
+
+/// The device's side of `the_device_loop_serves_any_byte_stream`'s damaged frames, walked
+/// exhaustively: a `Configure` frame with any one byte changed (every position, masks
+/// that flip one bit, a nibble or all eight) is never obeyed (a sensor frame after it gets
+/// no command, the device stays unconfigured) and is counted as a CRC, decode or overrun
+/// error, and the intact frames that follow it are decoded. A damaged delimiter would merge
+/// the frame with the next one into one dropped frame, so each case sends a lone 0 (an
+/// empty frame, ignored) after the damaged frame, as a link's resynchronisation would.
+#[test]
+fn a_configure_frame_with_any_byte_changed_is_counted_and_never_obeyed() {
+    let cfg = base_configs()[0];
+    let good = frame(&Request::Configure(cfg));
+    let sensor = frame(&Request::Sensor(SensorFrame {
+        seq: 1,
+        timestamp_us: 1_000,
+        tangential_force_n: [1.0, 0.0],
+        torsional_moment_nm: 0.001,
+        normal_force_n: 2.0,
+        slip: Default::default(),
+    }));
+    let mut runs = 0;
+    for i in 0..good.len() {
+        for mask in [0x01u8, 0x10, 0x80, 0x0f, 0xf0, 0xff] {
+            let mut bad = good.clone();
+            bad[i] ^= mask;
+            let mut bytes = bad;
+            bytes.push(0);
+            bytes.extend(&sensor);
+            bytes.extend(frame(&Request::GetStats));
+            let mut wire = Wire {
+                input: VecDeque::from([bytes]),
+                output: Vec::new(),
+            };
+            let mut device = Device::<Libm>::new();
+            device
+                .run(&mut wire, &mut NoActuator, &mut NoClock)
+                .unwrap();
+            let mut decoder = DefaultFrameDecoder::new();
+            let mut replies = Vec::new();
+            decoder.feed::<Reply>(&wire.output, |r| replies.push(r));
+            assert!(
+                device.controller().is_none(),
+                "byte {i} ^ {mask:#04x}: the damaged configuration was obeyed"
+            );
+            assert!(
+                !replies.iter().any(|r| matches!(r, Reply::Command(_))),
+                "byte {i} ^ {mask:#04x}: a command without a configuration: {replies:?}"
+            );
+            let Some(Reply::Stats(s)) = replies.last() else {
+                panic!("byte {i} ^ {mask:#04x}: no stats reply: {replies:?}");
+            };
+            assert!(
+                s.crc_errors + s.decode_errors + s.overruns >= 1,
+                "byte {i} ^ {mask:#04x}: the damaged frame was not counted: {s:?}"
+            );
+            runs += 1;
+        }
+    }
+    assert_eq!(runs, good.len() * 6);
 }

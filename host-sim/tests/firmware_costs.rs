@@ -301,41 +301,111 @@ fn render(toolchain: &str, ticks: usize, rows: &[Firmware]) -> String {
             tick(&f.table),
         );
     }
-    t += "| budget | 65 536 B | 16 384 B | 8 000 000 (table); prebuilt 1 000 000 | 2 000 | 5 000 |\n";
+    t += &format!(
+        "| budget | {} B | {} B | {} (table); prebuilt {} | {} | {} |\n",
+        grouped(FLASH_BUDGET_BYTES),
+        grouped(RAM_BUDGET_BYTES),
+        grouped(STARTUP_TABLE_BUDGET),
+        grouped(STARTUP_PREBUILT_BUDGET),
+        grouped(TICK_ELLIPSE_BUDGET),
+        grouped(TICK_TABLE_BUDGET),
+    );
+    t += &margin_row(rows);
     t += END;
     t
 }
 
-/// The budgets missed, by name.
-fn check_budgets(rows: &[Firmware]) -> Vec<String> {
-    let mut missed = Vec::new();
+/// The budgets (the item 1), one per column of the table's last rows.
+const FLASH_BUDGET_BYTES: u64 = 64 * 1024;
+const RAM_BUDGET_BYTES: u64 = 16 * 1024;
+const STARTUP_TABLE_BUDGET: u64 = 8_000_000;
+const STARTUP_PREBUILT_BUDGET: u64 = 1_000_000;
+const TICK_ELLIPSE_BUDGET: u64 = 2_000;
+const TICK_TABLE_BUDGET: u64 = 5_000;
+
+/// One budgeted figure of one firmware: what it is, as measured, and its limit.
+struct Budgeted {
+    firmware: &'static str,
+    what: &'static str,
+    value: u64,
+    limit: u64,
+}
+
+/// Every budgeted figure the rows measured.
+fn budgeted(rows: &[Firmware]) -> Vec<Budgeted> {
+    let mut all = Vec::new();
     for f in rows {
-        let mut over = |what: &str, value: u64, limit: u64| {
-            if value > limit {
-                missed.push(format!("{}: {what}", f.name));
-            }
+        let mut add = |what, value: u64, limit| {
+            all.push(Budgeted {
+                firmware: f.name,
+                what,
+                value,
+                limit,
+            });
         };
         if let Some(e) = &f.ellipse {
-            over("tick, ellipse", u64::from(e.tick_max), 2_000);
+            add("tick, ellipse", u64::from(e.tick_max), TICK_ELLIPSE_BUDGET);
         }
-        over("tick, table", u64::from(f.table.tick_max), 5_000);
+        add(
+            "tick, table",
+            u64::from(f.table.tick_max),
+            TICK_TABLE_BUDGET,
+        );
         if f.ticks_only {
             continue;
         }
-        over("flash", f.flash, 64 * 1024);
+        add("flash", f.flash, FLASH_BUDGET_BYTES);
         let ram = |m: &ModeCost| f.static_ram + u64::from(m.stack_peak);
         if let Some(e) = &f.ellipse {
-            over("static RAM + stack, ellipse", ram(e), 16 * 1024);
+            add("static RAM + stack, ellipse", ram(e), RAM_BUDGET_BYTES);
         }
-        over("static RAM + stack, table", ram(&f.table), 16 * 1024);
-        let startup = if f.ellipse.is_some() {
-            8_000_000
+        add("static RAM + stack, table", ram(&f.table), RAM_BUDGET_BYTES);
+        let startup = u64::from(f.table.startup);
+        if f.ellipse.is_some() {
+            add("start-up, table", startup, STARTUP_TABLE_BUDGET);
         } else {
-            1_000_000
-        };
-        over("start-up, table", u64::from(f.table.startup), startup);
+            add("start-up, prebuilt", startup, STARTUP_PREBUILT_BUDGET);
+        }
     }
-    missed
+    all
+}
+
+/// The budgets missed, by firmware and name.
+fn check_budgets(rows: &[Firmware]) -> Vec<String> {
+    budgeted(rows)
+        .into_iter()
+        .filter(|b| b.value > b.limit)
+        .map(|b| format!("{}: {}", b.firmware, b.what))
+        .collect()
+}
+
+/// The table's last row: what is left of each budget after the largest figure measured
+/// against it (negative when a budget is missed, which `check_budgets` then names).
+fn margin_row(rows: &[Firmware]) -> String {
+    let all = budgeted(rows);
+    let left = |whats: &[&str]| {
+        let m = all
+            .iter()
+            .filter(|b| whats.contains(&b.what))
+            .map(|b| b.limit as i64 - b.value as i64)
+            .min()
+            .unwrap_or(0);
+        let g = grouped(m.unsigned_abs());
+        if m < 0 {
+            format!("−{g}")
+        } else {
+            g
+        }
+    };
+    format!(
+        "| left (budget − largest measured) | {} B | {} B | {} (table); prebuilt {} | {} | {} |\n",
+        left(&["flash"]),
+        left(&["static RAM + stack, ellipse", "static RAM + stack, table"]),
+        left(&["start-up, table"]),
+        left(&["start-up, prebuilt"]),
+        left(&["tick, ellipse"]),
+        left(&["tick, table"]),
+    )
 }
 
 #[test]

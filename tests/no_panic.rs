@@ -16,8 +16,8 @@ use softgrip::controller::{
 };
 use softgrip::device::{Device, NoActuator, NoClock};
 use softgrip::protocol::{
-    encode, DefaultFrameDecoder, Reply, Request, SensorFrame, MAX_FRAME_LEN, PROTOCOL_VERSION,
-    SCHEMA_KEY,
+    encode, DecoderCounters, DefaultFrameDecoder, Reply, Request, SensorFrame, MAX_FRAME_LEN,
+    PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use std::collections::VecDeque;
 
@@ -61,6 +61,23 @@ fn frame(req: &Request) -> Vec<u8> {
     let mut buf = [0u8; MAX_FRAME_LEN];
     let n = encode(req, &mut buf).unwrap();
     buf[..n].to_vec()
+}
+
+/// Runs a fresh device over `chunks` (one read each) to the end of the stream; returns the
+/// device, the bytes it wrote, the replies they decode to, and the counters of that decoding.
+fn serve(chunks: VecDeque<Vec<u8>>) -> (Device<Libm>, Vec<u8>, Vec<Reply>, DecoderCounters) {
+    let mut wire = Wire {
+        input: chunks,
+        output: Vec::new(),
+    };
+    let mut device = Device::<Libm>::new();
+    device
+        .run(&mut wire, &mut NoActuator, &mut NoClock)
+        .unwrap();
+    let mut decoder = DefaultFrameDecoder::new();
+    let mut replies = Vec::new();
+    decoder.feed::<Reply>(&wire.output, |r| replies.push(r));
+    (device, wire.output, replies, decoder.counters())
 }
 
 /// A cheap configuration to start from (ellipse mode, few nodes) and a table-mode one.
@@ -307,19 +324,11 @@ proptest! {
                 Piece::Raw(raw) => bytes.extend(raw),
             }
         }
-        let mut wire = Wire {
-            input: bytes.chunks(chunk).map(<[u8]>::to_vec).collect(),
-            output: Vec::new(),
-        };
-        let mut device = Device::<Libm>::new();
-        device.run(&mut wire, &mut NoActuator, &mut NoClock).unwrap();
+        let (device, output, replies, c) =
+            serve(bytes.chunks(chunk).map(<[u8]>::to_vec).collect());
         // Every reply decodes as one well-formed frame.
-        let mut decoder = DefaultFrameDecoder::new();
-        let mut replies = Vec::new();
-        decoder.feed::<Reply>(&wire.output, |r| replies.push(r));
-        let c = decoder.counters();
         prop_assert_eq!(c.crc_errors + c.decode_errors + c.overruns, 0);
-        prop_assert!(!wire.output.is_empty() || replies.is_empty());
+        prop_assert!(!output.is_empty() || replies.is_empty());
         // The command lies within the bounds of whichever accepted configuration is in
         // force; a frame may have been merged with garbage and dropped, so take the union
         // over the valid configurations in the stream.
@@ -409,17 +418,7 @@ fn a_configure_frame_with_any_byte_changed_is_counted_and_never_obeyed() {
             bytes.push(0);
             bytes.extend(&sensor);
             bytes.extend(frame(&Request::GetStats));
-            let mut wire = Wire {
-                input: VecDeque::from([bytes]),
-                output: Vec::new(),
-            };
-            let mut device = Device::<Libm>::new();
-            device
-                .run(&mut wire, &mut NoActuator, &mut NoClock)
-                .unwrap();
-            let mut decoder = DefaultFrameDecoder::new();
-            let mut replies = Vec::new();
-            decoder.feed::<Reply>(&wire.output, |r| replies.push(r));
+            let (device, _, replies, _) = serve(VecDeque::from([bytes]));
             assert!(
                 device.controller().is_none(),
                 "byte {i} ^ {mask:#04x}: the damaged configuration was obeyed"

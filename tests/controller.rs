@@ -820,3 +820,44 @@ fn an_aspect_the_start_up_cannot_sample_is_refused_by_name() {
         c.unwrap();
     }
 }
+
+/// Taking over a 2 N pre-grip: the first command stays within one tick's fall of it
+/// (before `start_at`, a fresh controller's first command was its `N_min`, a drop of
+/// 1.8 N), it settles on `N_req` through the fall limit, and the start is clamped and
+/// NaN-proof.
+#[test]
+fn start_at_takes_over_an_existing_grip_without_a_bump() {
+    let cfg = ControllerConfig::default();
+    let fall = (cfg.fall_rate_n_per_s * cfg.tick_period_s) as f32;
+    let mut c = Controller::<f32>::new(cfg).unwrap();
+    c.start_at(2.0);
+    assert_eq!(c.command_n(), 2.0);
+    let light = c
+        .required_force(0.2, 0.0, cfg.safety as f32)
+        .unwrap()
+        .force_n;
+    assert!(light < 1.0, "{light}");
+    let first = c.tick(&meas(0.2, 0.0, 2.0, 1_000)).command_n;
+    assert!((first - (2.0 - fall)).abs() < 1e-6, "first command {first}");
+    let mut last = first;
+    for k in 2..2_000u64 {
+        let now = c.tick(&meas(0.2, 0.0, last, k * 1_000)).command_n;
+        assert!(
+            last - now <= fall * 1.0001 && now <= last,
+            "{last} -> {now}"
+        );
+        last = now;
+    }
+    assert!(
+        (last - light.max(cfg.n_min_n as f32)).abs() < 1e-3,
+        "{last} vs {light}"
+    );
+
+    let mut c = Controller::<f32>::new(cfg).unwrap();
+    c.start_at(f32::NAN);
+    assert_eq!(c.command_n(), cfg.n_min_n as f32);
+    c.start_at(1e9);
+    assert_eq!(c.command_n(), cfg.n_max_n as f32);
+    c.start_at(-3.0);
+    assert_eq!(c.command_n(), cfg.n_min_n as f32);
+}

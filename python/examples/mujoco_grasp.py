@@ -65,16 +65,7 @@ def operating_force() -> float:
     g = 9.81
     ft = BOX_MASS * g / 2.0
     mn = BOX_MASS * g * GRASP_OFFSET / 2.0
-    r = softgrip.required_force(
-        ft,
-        mn,
-        FINGER["mu"],
-        FINGER["c_m_per_n_gamma"],
-        FINGER["gamma"],
-        shape=FINGER["shape"],
-        k=FINGER["k"],
-        safety=SAFETY,
-    )
+    r = softgrip.required_force(ft, mn, **FINGER, safety=SAFETY)
     return float(r["normal_force"])
 
 

@@ -37,9 +37,9 @@ def default_config() -> dict[str, Any]:
     return _softgrip.default_config()
 
 
-def half_width(c: float, gamma: float, normal_force: float) -> float:
-    """Contact half-width ``a = c·N^γ`` [m] at ``normal_force`` [N] (``c`` in m/N^γ)."""
-    return _softgrip.half_width(float(c), float(gamma), float(normal_force))
+def half_width(c_m_per_n_gamma: float, gamma: float, normal_force_n: float) -> float:
+    """Contact half-width ``a = c·N^γ`` [m] at ``normal_force_n`` [N] (``c`` in m/N^γ)."""
+    return _softgrip.half_width(float(c_m_per_n_gamma), float(gamma), float(normal_force_n))
 
 
 def fls(
@@ -56,7 +56,8 @@ def fls(
 ) -> dict[str, Any]:
     """One friction limit surface, as ``host-sim fls --format json`` computes it (f64).
 
-    Parameters: ``shape`` "rect" (hemicylinder) or "disc" (hemisphere); ``k >= 1`` the
+    Parameters (the names of ``host-sim fls``'s flags): ``shape`` "rect" (a hemicylinder:
+    the patch [-l, l] × [-a, a]) or "disc" (a hemisphere); ``k >= 1`` the
     pressure exponent (``float("inf")`` for uniform pressure); ``aspect`` l/a of the
     rectangle; ``skew`` Δ/a in [0, 1) (0: symmetric); ``alpha`` the skew law's rate;
     ``samples`` centres of rotation in the sweep (2..4096); ``locus`` h/a (default Δ/2);
@@ -93,58 +94,57 @@ def fls(
 def required_force(
     ft: Any,
     mn: Any,
-    mu: float,
-    c: float,
-    gamma: float,
     *,
+    mu: float = 0.8,
+    c_m_per_n_gamma: float = 2.5e-3,
+    gamma: float = 0.5,
     shape: str = "rect",
-    length: float = 0.01,
+    half_length_m: float = 0.01,
     k: float = 2.0,
     safety: float = 1.3,
     mode: str = "ellipse",
-    skew: float = 0.0,
-    alpha: float = 1.1,
-    locus: Optional[float] = None,
-    n_min: float = 0.2,
-    n_max: float = 20.0,
+    skew: Any = None,
+    n_min_n: float = 0.2,
+    n_max_n: float = 20.0,
 ) -> dict[str, Any]:
     """docs/model.md's slip-prevention rule for many loads, as ``host-sim required-force``.
 
     ``ft`` |f_t| [N] and ``mn`` |m_n| [N·m] are numbers or arrays (broadcast together; signs
-    are ignored); ``mu`` the friction coefficient; ``c`` [m/N^γ] and ``gamma`` the contact
-    law a = c·N^γ; ``length`` the rectangle's half-length l [m]; ``safety`` s >= 1;
-    ``mode`` "ellipse" or "table"; ``skew``/``alpha``/``locus`` the pressure peak's skew
-    (table mode sees it); ``n_min``/``n_max`` the controller's force grid [N].
+    are ignored). The keywords are ``Controller``'s, with its defaults: ``mu`` the friction
+    coefficient; ``c_m_per_n_gamma`` [m/N^γ] and ``gamma`` the contact law a = c·N^γ;
+    ``shape`` "rect" (a hemicylinder: the patch [-l, l] × [-a, a]) or "disc" (a
+    hemisphere); ``half_length_m`` the rectangle's half-length l [m]; ``k`` the pressure
+    exponent; ``safety`` s >= 1; ``mode`` "ellipse" or "table"; ``skew`` the pressure
+    peak's skew as ``Controller`` takes it (None, Δ/a, (Δ/a, α, h/a) or a dict; table mode
+    sees it); ``n_min_n``/``n_max_n`` the controller's force grid [N].
 
     One controller is built (f64 precomputation, 64 force nodes, f64 libm tick) and asked
     for every load. Returns a dict of arrays shaped like the broadcast loads:
     ``normal_force`` (N_req(s) [N]), ``n_slip`` (N_req(1) [N]), ``a`` (half-width at
     ``normal_force`` [m]), ``utilisation`` (of the load at ``command``), ``status``
-    ("ok"/"saturated"), ``command`` (``normal_force`` clamped into [n_min, n_max] [N]); and
-    ``mode`` and ``ellipse_axes`` (the inscribed ellipse's semi-axes; (1, 1) in table mode).
-    ``exact_force`` of the CLI (a reference computed by host-sim, not by the core) is not
-    included.
+    ("ok"/"saturated"), ``command`` (``normal_force`` clamped into [n_min_n, n_max_n] [N]);
+    and ``mode`` and ``ellipse_axes`` (the inscribed ellipse's semi-axes; (1, 1) in table
+    mode). ``exact_force`` of the CLI (a reference computed by host-sim, not by the core)
+    is not included.
 
-    Raises ``ConfigError`` (a ``ValueError``) naming the bad parameter.
+    Raises ``ConfigError`` (a ``ValueError``) naming the bad keyword.
     """
     f_arr, m_arr = np.broadcast_arrays(np.asarray(ft, dtype=float), np.asarray(mn, dtype=float))
     shape_out = f_arr.shape
     r = _softgrip.required_force(
         f_arr.ravel().tolist(),
         m_arr.ravel().tolist(),
-        float(mu),
-        float(c),
-        float(gamma),
-        str(shape),
-        float(length),
-        float(k),
-        float(safety),
-        str(mode),
-        float(skew),
-        float(alpha),
-        None if locus is None else float(locus),
-        float(n_min),
-        float(n_max),
+        mu=float(mu),
+        c_m_per_n_gamma=float(c_m_per_n_gamma),
+        gamma=float(gamma),
+        shape=str(shape),
+        half_length_m=float(half_length_m),
+        k=float(k),
+        safety=float(safety),
+        mode=str(mode),
+        skew=skew,
+        n_min_n=float(n_min_n),
+        n_max_n=float(n_max_n),
     )
     for key in ("normal_force", "n_slip", "a", "utilisation", "command"):
         r[key] = np.asarray(r[key], dtype=float).reshape(shape_out)

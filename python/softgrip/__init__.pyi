@@ -7,16 +7,18 @@ from ._softgrip import CONFIG_FIELDS as CONFIG_FIELDS
 from ._softgrip import ConfigError as ConfigError
 from ._softgrip import Controller as Controller
 from ._softgrip import TickStatus as TickStatus
+from ._softgrip import SkewArg
 
 __version__: str
 
 ArrayLike = Union[float, Sequence[float], npt.NDArray[np.float64]]
 
 def default_config() -> dict[str, Any]: ...
-def half_width(c: float, gamma: float, normal_force: float) -> float:
-    """Contact half-width a = c·N^γ [m] at normal_force [N]."""
+def half_width(c_m_per_n_gamma: float, gamma: float, normal_force_n: float) -> float:
+    """Contact half-width a = c·N^γ [m] at normal_force_n [N]."""
 
 def fls(
+    # "rect": a hemicylinder (the patch [-l, l] × [-a, a]); "disc": a hemisphere.
     shape: Literal["rect", "disc"] = "rect",
     k: float = 2.0,
     aspect: float = 1.0,
@@ -34,19 +36,19 @@ def fls(
 def required_force(
     ft: ArrayLike,
     mn: ArrayLike,
-    mu: float,
-    c: float,
-    gamma: float,
     *,
+    mu: float = 0.8,
+    c_m_per_n_gamma: float = 2.5e-3,
+    gamma: float = 0.5,
     shape: Literal["rect", "disc"] = "rect",
-    length: float = 0.01,
+    half_length_m: float = 0.01,
     k: float = 2.0,
     safety: float = 1.3,
     mode: Literal["ellipse", "table"] = "ellipse",
-    skew: float = 0.0,
-    alpha: float = 1.1,
-    locus: Optional[float] = None,
-    n_min: float = 0.2,
-    n_max: float = 20.0,
+    skew: SkewArg = None,
+    n_min_n: float = 0.2,
+    n_max_n: float = 20.0,
 ) -> dict[str, Any]:
-    """N_req(s) [N] for loads ft [N], mn [N·m], vectorised; as host-sim required-force."""
+    """N_req(s) [N] for loads ft [N], mn [N·m], vectorised; as host-sim required-force.
+    Keywords: Controller's, with its defaults ("rect" is a hemicylinder, "disc" a
+    hemisphere)."""

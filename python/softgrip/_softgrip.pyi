@@ -43,42 +43,41 @@ class TickStatus:
 class Controller:
     """The slip-prevention controller (f64 precompute and tick).
 
-    Keywords are ``ControllerConfig``'s fields (defaults ``default_config()``): mu,
-    shape ("rect"/"disc"), k, skew (None, Δ/a, or (Δ/a, α, h/a)), c_m_per_n_gamma [m/N^γ],
-    gamma, half_length_m [m], safety, n_min_n [N], n_max_n [N], rise_rate_n_per_s [N/s],
-    fall_rate_n_per_s [N/s], tick_period_s [s], stale_timeout_s [s], fault_force_n [N],
-    force_range_n [N], moment_range_nm [N·m], mode ("ellipse"/"table"), force_nodes,
-    quadrature_order, table_samples, aspect_count, actuator_lag_s [s],
-    actuator_slew_n_per_s [N/s]. A bad value raises ConfigError naming the field.
+    Every keyword is a ``ControllerConfig`` field, with the same name, unit and default as
+    ``default_config()``, the scene TOML and host-sim's flags. ``shape`` "rect" is a
+    hemicylinder (the patch [-l, l] × [-a, a]), "disc" a hemisphere. ``initial_force_n``
+    takes over an existing grip without a bump (default: start at ``n_min_n``). A bad
+    value raises ConfigError naming the keyword.
     """
 
     def __init__(
         self,
         *,
-        mu: float = ...,
-        shape: Literal["rect", "disc"] = ...,
-        k: float = ...,
-        skew: SkewArg = ...,
-        c_m_per_n_gamma: float = ...,
-        gamma: float = ...,
-        half_length_m: float = ...,
-        safety: float = ...,
-        n_min_n: float = ...,
-        n_max_n: float = ...,
-        rise_rate_n_per_s: float = ...,
-        fall_rate_n_per_s: float = ...,
-        tick_period_s: float = ...,
-        stale_timeout_s: float = ...,
-        fault_force_n: float = ...,
-        force_range_n: float = ...,
-        moment_range_nm: float = ...,
-        mode: Literal["ellipse", "table"] = ...,
-        force_nodes: int = ...,
-        quadrature_order: int = ...,
-        table_samples: int = ...,
-        aspect_count: int = ...,
-        actuator_lag_s: float = ...,
-        actuator_slew_n_per_s: float = ...,
+        mu: float = 0.8,
+        shape: Literal["rect", "disc"] = "rect",
+        k: float = 2.0,
+        skew: SkewArg = None,
+        c_m_per_n_gamma: float = 2.5e-3,
+        gamma: float = 0.5,
+        half_length_m: float = 0.01,
+        safety: float = 1.3,
+        n_min_n: float = 0.2,
+        n_max_n: float = 20.0,
+        rise_rate_n_per_s: float = 400.0,
+        fall_rate_n_per_s: float = 20.0,
+        tick_period_s: float = 0.001,
+        stale_timeout_s: float = 0.02,
+        fault_force_n: float = 10.0,
+        force_range_n: float = 100.0,
+        moment_range_nm: float = 2.0,
+        mode: Literal["ellipse", "table"] = "ellipse",
+        force_nodes: int = 48,
+        quadrature_order: int = 28,
+        table_samples: int = 48,
+        aspect_count: int = 8,
+        actuator_lag_s: float = 0.0,
+        actuator_slew_n_per_s: float = float("inf"),
+        initial_force_n: Optional[float] = None,
     ) -> None: ...
     def tick(
         self,
@@ -89,7 +88,10 @@ class Controller:
         normal_force: Optional[float] = None,
     ) -> tuple[float, TickStatus]:
         """One tick: tangential force ft [N] (|f_t| or its 2 components), torsional moment
-        mn [N·m], timestamp t [s] (must increase), slip signal, measured normal force [N]
+        mn [N·m], timestamp t [s] on a monotonic clock (a repeated or earlier stamp is
+        refused: status "stale_input", the command holds, time_rejections counts it),
+        slip signal ("incipient": the patch's edge slides; "gross": the object slides;
+        derive it from sliding, not creep: docs/sensor-inputs.md), measured normal force [N]
         (default: the present command). Returns (command [N], status)."""
     def idle(self) -> tuple[float, TickStatus]:
         """A tick with no measurement (counts as stale input)."""
@@ -118,9 +120,10 @@ def fls(
     samples: int, order: int, at: Optional[list[float]],
 ) -> dict[str, Any]: ...
 def required_force(
-    ft: list[float], mn: list[float], mu: float, c: float, gamma: float, shape: str,
-    length: float, k: float, safety: float, mode: str, skew: float, alpha: float,
-    locus: Optional[float], n_min: float, n_max: float,
+    ft: list[float], mn: list[float], *, mu: float = 0.8, c_m_per_n_gamma: float = 2.5e-3,
+    gamma: float = 0.5, shape: str = "rect", half_length_m: float = 0.01, k: float = 2.0,
+    safety: float = 1.3, mode: str = "ellipse", skew: SkewArg = None, n_min_n: float = 0.2,
+    n_max_n: float = 20.0,
 ) -> dict[str, Any]: ...
 def default_config() -> dict[str, Any]: ...
-def half_width(c: float, gamma: float, n: float) -> float: ...
+def half_width(c_m_per_n_gamma: float, gamma: float, normal_force_n: float) -> float: ...

@@ -34,6 +34,11 @@ pub(crate) fn count(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyResul
     let n: i64 = v
         .extract()
         .map_err(|_| PyTypeError::new_err(format!("{name}: expected an integer")))?;
+    count_of(py, name, n)
+}
+
+/// A table size `n` as the configuration's `u16`, or a `ConfigError` naming `name`.
+pub(crate) fn count_of(py: Python<'_>, name: &str, n: i64) -> PyResult<u16> {
     u16::try_from(n).map_err(|_| {
         bad(
             py,
@@ -48,13 +53,17 @@ pub(crate) fn real(name: &str, v: &Bound<'_, PyAny>) -> PyResult<f64> {
         .map_err(|_| PyTypeError::new_err(format!("{name}: expected a number")))
 }
 
-/// `skew` as Python gives it: `None`, `Δ/a` (then `α = 1.1`, locus `Δ/2`), a tuple
+/// `skew` as Python gives it: `None` (or 0), `Δ/a` (then `α = 1.1`, locus `Δ/2`), a tuple
 /// `(Δ/a, α, h/a)` or a dict with those field names.
 pub(crate) fn skew_of(v: &Bound<'_, PyAny>) -> PyResult<Option<SkewParams>> {
     if v.is_none() {
         return Ok(None);
     }
     if let Ok(d) = v.extract::<f64>() {
+        if d == 0.0 {
+            // No skew, as `--skew 0` on the command line.
+            return Ok(None);
+        }
         return Ok(Some(SkewParams {
             delta_over_a: d,
             alpha: 1.1,

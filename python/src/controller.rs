@@ -63,9 +63,13 @@ impl From<TickOutput<f64>> for TickStatus {
 
 /// The slip-prevention controller (f64 precompute and tick, libm).
 ///
-/// `Controller(**config)`: keywords are `ControllerConfig`'s fields (see
-/// `softgrip.default_config()`): forces in N, moments in N·m, lengths in m, times in s,
-/// rates in N/s. A bad value raises `ConfigError` (a `ValueError`) naming the field.
+/// Every keyword is a `ControllerConfig` field with its default (the same names, units
+/// and defaults as `softgrip.default_config()`, the scene TOML's `[controller]` keys and
+/// `host-sim`'s flags): forces in N, moments in N·m, lengths in m, times in s, rates in
+/// N/s. `shape` is "rect" (a hemicylinder: the rectangular patch `[-l, l] × [-a, a]`) or
+/// "disc" (a hemisphere). `initial_force_n` takes over a grip already applied (the first
+/// command is within one tick's rate limit of it); by default the controller starts at
+/// `n_min_n`. A bad value raises `ConfigError` (a `ValueError`) naming the keyword.
 #[pyclass(module = "softgrip")]
 pub(crate) struct Controller {
     inner: CoreController<f64, Libm>,
@@ -96,19 +100,135 @@ pub(crate) fn slip_of(py: Python<'_>, v: Option<&Bound<'_, PyAny>>) -> PyResult<
 #[pymethods]
 impl Controller {
     #[new]
-    #[pyo3(signature = (**config))]
-    fn new(py: Python<'_>, config: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let cfg = apply(py, ControllerConfig::default(), config)?;
-        Ok(Self {
-            inner: build(py, cfg)?,
-        })
+    #[pyo3(signature = (
+        *,
+        mu = 0.8,
+        shape = "rect",
+        k = 2.0,
+        skew = None,
+        c_m_per_n_gamma = 2.5e-3,
+        gamma = 0.5,
+        half_length_m = 0.01,
+        safety = 1.3,
+        n_min_n = 0.2,
+        n_max_n = 20.0,
+        rise_rate_n_per_s = 400.0,
+        fall_rate_n_per_s = 20.0,
+        tick_period_s = 0.001,
+        stale_timeout_s = 0.02,
+        fault_force_n = 10.0,
+        force_range_n = 100.0,
+        moment_range_nm = 2.0,
+        mode = "ellipse",
+        force_nodes = 48,
+        quadrature_order = 28,
+        table_samples = 48,
+        aspect_count = 8,
+        actuator_lag_s = 0.0,
+        actuator_slew_n_per_s = f64::INFINITY,
+        initial_force_n = None,
+    ))]
+    // Written out only for `actuator_slew_n_per_s`'s default, which PyO3 would show as
+    // `...`; tests/test_vocabulary.py checks it against `default_config()`.
+    #[pyo3(text_signature = "(*, mu=0.8, shape='rect', k=2.0, skew=None, \
+        c_m_per_n_gamma=0.0025, gamma=0.5, half_length_m=0.01, safety=1.3, n_min_n=0.2, \
+        n_max_n=20.0, rise_rate_n_per_s=400.0, fall_rate_n_per_s=20.0, tick_period_s=0.001, \
+        stale_timeout_s=0.02, fault_force_n=10.0, force_range_n=100.0, \
+        moment_range_nm=2.0, mode='ellipse', force_nodes=48, quadrature_order=28, \
+        table_samples=48, aspect_count=8, actuator_lag_s=0.0, actuator_slew_n_per_s=1e999, \
+        initial_force_n=None)")]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        mu: f64,
+        shape: &str,
+        k: f64,
+        skew: Option<&Bound<'_, PyAny>>,
+        c_m_per_n_gamma: f64,
+        gamma: f64,
+        half_length_m: f64,
+        safety: f64,
+        n_min_n: f64,
+        n_max_n: f64,
+        rise_rate_n_per_s: f64,
+        fall_rate_n_per_s: f64,
+        tick_period_s: f64,
+        stale_timeout_s: f64,
+        fault_force_n: f64,
+        force_range_n: f64,
+        moment_range_nm: f64,
+        mode: &str,
+        force_nodes: i64,
+        quadrature_order: i64,
+        table_samples: i64,
+        aspect_count: i64,
+        actuator_lag_s: f64,
+        actuator_slew_n_per_s: f64,
+        initial_force_n: Option<f64>,
+    ) -> PyResult<Self> {
+        let cfg = ControllerConfig {
+            mu,
+            shape: shape_of(py, shape)?,
+            k,
+            skew: match skew {
+                Some(v) => skew_of(v)?,
+                None => None,
+            },
+            c_m_per_n_gamma,
+            gamma,
+            half_length_m,
+            safety,
+            n_min_n,
+            n_max_n,
+            rise_rate_n_per_s,
+            fall_rate_n_per_s,
+            tick_period_s,
+            stale_timeout_s,
+            fault_force_n,
+            force_range_n,
+            moment_range_nm,
+            mode: mode_of(py, mode)?,
+            force_nodes: count_of(py, "force_nodes", force_nodes)?,
+            quadrature_order: count_of(py, "quadrature_order", quadrature_order)?,
+            table_samples: count_of(py, "table_samples", table_samples)?,
+            aspect_count: count_of(py, "aspect_count", aspect_count)?,
+            actuator_lag_s,
+            actuator_slew_n_per_s,
+        };
+        let mut inner = build(py, cfg)?;
+        if let Some(n) = initial_force_n {
+            let n = finite(py, "initial_force_n", n)?;
+            inner.start_at(n);
+        }
+        Ok(Self { inner })
     }
 
-    /// One control tick. `ft`: the tangential force [N], `|f_t|` or its two components;
-    /// `mn`: the torsional moment [N·m]; `t`: the sensor's timestamp [s] (it must
-    /// increase; rounded to µs); `slip`: None, "none", "incipient" or "gross";
-    /// `normal_force`: the measured normal force [N] (default: the present command).
-    /// Returns `(command [N], TickStatus)`.
+    /// One control tick. Returns `(command [N], TickStatus)`.
+    ///
+    /// - `ft`: the tangential force [N], `|f_t|` or its two components.
+    /// - `mn`: the torsional moment [N·m].
+    /// - `t`: the measurement's timestamp [s] on a monotonic clock (rounded to µs). Each
+    ///   tick's must be 1 µs to 1 s (or four tick periods, if longer) after the last
+    ///   accepted one. A repeated or earlier stamp (or a jump into the far future) is
+    ///   refused: the tick returns status "stale_input", the command holds, the frame
+    ///   is counted in `time_rejections`, and after `stale_timeout_s` of refusals the
+    ///   command goes to the fault force. Three refused stamps in a row that follow each
+    ///   other by plausible steps re-anchor the clock (a sensor restart).
+    /// - `slip`: the tactile slip signal. None or "none": no slip seen (or no sensor).
+    ///   "incipient": the patch's edge slides while its centre sticks; acted on once it
+    ///   has lasted 2 ms: the margin rises by 0.05 (if it persists, μ̂ is lowered too).
+    ///   "gross": the object slides or turns in the grasp; acted on at once: the margin
+    ///   rises by 0.3 and μ̂ is lowered to what the load at slip implies. Either way the
+    ///   command jumps to the new requirement; a report at a utilisation below 0.4
+    ///   moves the margin only. Both relax back once the signal stops.
+    ///   A soft contact creeps under any load (its bristles stretch without sliding),
+    ///   so derive the signal from relative *sliding*, not from motion: report
+    ///   "gross" when the object's displacement relative to the fingertip keeps growing
+    ///   beyond the skin's elastic range (e.g. more than 0.5 mm over 20 ms), and
+    ///   "incipient" when a sensor sees sliding at the patch's edge (vibration bursts,
+    ///   shear-field edge slip) while the centre sticks; a plain velocity threshold
+    ///   fires on creep (docs/sensor-inputs.md).
+    /// - `normal_force`: the measured normal force [N] (default: the present command).
     #[pyo3(signature = (ft, mn, t, slip=None, normal_force=None))]
     fn tick(
         &mut self,

@@ -61,11 +61,13 @@ fn same(p: &str) -> &str {
 }
 
 /// The `Controller` keyword of a parameter the core names otherwise: `QuadratureOrder`
-/// names itself `order`, the configuration field is `quadrature_order`.
+/// names itself `order` (the field is `quadrature_order`), `ContactSize` its coefficient
+/// `c` (the field is `c_m_per_n_gamma`), the skew's `Δ/a` is the keyword `skew`.
 fn field_name(p: &str) -> &str {
     match p {
         "order" => "quadrature_order",
         "delta_over_a" => "skew",
+        "c" => "c_m_per_n_gamma",
         other => other,
     }
 }
@@ -106,11 +108,17 @@ fn default_config(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     config_dict(py, &ControllerConfig::default())
 }
 
-/// Contact half-width `a = c·N^γ` [m] at normal force `n` [N].
+/// Contact half-width `a = c·N^γ` [m] at normal force `normal_force_n` [N].
 #[pyfunction]
-fn half_width(py: Python<'_>, c: f64, gamma: f64, n: f64) -> PyResult<f64> {
-    let contact = ContactSize::<f64>::new(c, gamma).map_err(|e| core_err(py, e, rf_name))?;
-    Ok(contact.half_width_m(n))
+fn half_width(
+    py: Python<'_>,
+    c_m_per_n_gamma: f64,
+    gamma: f64,
+    normal_force_n: f64,
+) -> PyResult<f64> {
+    let contact =
+        ContactSize::<f64>::new(c_m_per_n_gamma, gamma).map_err(|e| core_err(py, e, rf_name))?;
+    Ok(contact.half_width_m(normal_force_n))
 }
 
 #[pymodule]

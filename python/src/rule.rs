@@ -2,18 +2,14 @@
 
 use crate::*;
 
-/// The keyword of `required_force` a configuration field corresponds to.
+/// The keyword of `required_force` a core parameter corresponds to: the configuration's
+/// field names, as `Controller` takes them (the sensor ranges are set from the loads).
 pub(crate) fn rf_name(param: &str) -> &str {
     match param {
-        "c_m_per_n_gamma" => "c",
-        "half_length_m" => "length",
-        "n_min_n" | "fault_force_n" => "n_min",
-        "n_max_n" => "n_max",
         "force_range_n" => "ft",
         "moment_range_nm" => "mn",
-        "delta_over_a" => "skew",
-        "order" => "quadrature_order",
-        other => other,
+        "fault_force_n" => "n_min_n",
+        other => field_name(other),
     }
 }
 
@@ -21,25 +17,38 @@ pub(crate) fn rf_name(param: &str) -> &str {
 /// configuration and computation as `host-sim required-force` (f64 precompute, f64 libm
 /// tick, 64 force nodes). Returns a dict of lists plus `ellipse_axes`.
 #[pyfunction]
-#[pyo3(signature = (ft, mn, mu, c, gamma, shape, length, k, safety, mode, skew, alpha, locus, n_min, n_max))]
+#[pyo3(signature = (
+    ft,
+    mn,
+    *,
+    mu = 0.8,
+    c_m_per_n_gamma = 2.5e-3,
+    gamma = 0.5,
+    shape = "rect",
+    half_length_m = 0.01,
+    k = 2.0,
+    safety = 1.3,
+    mode = "ellipse",
+    skew = None,
+    n_min_n = 0.2,
+    n_max_n = 20.0,
+))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn required_force<'py>(
     py: Python<'py>,
     ft: Vec<f64>,
     mn: Vec<f64>,
     mu: f64,
-    c: f64,
+    c_m_per_n_gamma: f64,
     gamma: f64,
     shape: &str,
-    length: f64,
+    half_length_m: f64,
     k: f64,
     safety: f64,
     mode: &str,
-    skew: f64,
-    alpha: f64,
-    locus: Option<f64>,
-    n_min: f64,
-    n_max: f64,
+    skew: Option<&Bound<'py, PyAny>>,
+    n_min_n: f64,
+    n_max_n: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     if ft.len() != mn.len() {
         return Err(PyValueError::new_err("ft and mn must have the same length"));
@@ -60,27 +69,22 @@ pub(crate) fn required_force<'py>(
         ft_max = ft_max.max(f.abs());
         mn_max = mn_max.max(m.abs());
     }
-    let skew_v = if skew == 0.0 {
-        None
-    } else {
-        Some(SkewParams {
-            delta_over_a: skew,
-            alpha,
-            locus_over_a: locus.unwrap_or(skew / 2.0),
-        })
+    let skew = match skew {
+        Some(v) => skew_of(v)?,
+        None => None,
     };
     let cfg = ControllerConfig {
         mu,
         shape: shape_of(py, shape)?,
         k,
-        skew: skew_v,
-        c_m_per_n_gamma: c,
+        skew,
+        c_m_per_n_gamma,
         gamma,
-        half_length_m: length,
+        half_length_m,
         safety,
-        n_min_n: n_min,
-        n_max_n: n_max,
-        fault_force_n: n_min,
+        n_min_n,
+        n_max_n,
+        fault_force_n: n_min_n,
         // The sensor must be able to read every load (as `host-sim required-force`; the
         // rule itself does not depend on it).
         force_range_n: (2.0 * ft_max).max(100.0),

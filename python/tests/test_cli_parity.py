@@ -71,28 +71,27 @@ def test_fls_at_points_match_cli(host_sim):
 
 
 RF_CASES = [
-    dict(mu=0.8, c=2.5e-3, gamma=0.5),
-    dict(mu=0.8, c=2.5e-3, gamma=0.5, mode="table"),
-    dict(mu=0.5, c=3e-3, gamma=1 / 3, shape="disc", safety=1.5),
-    dict(mu=1.2, c=2e-3, gamma=0.0, length=0.02, k=4.0),
-    dict(mu=0.8, c=2.5e-3, gamma=0.5, mode="table", skew=0.9),
-    dict(mu=0.8, c=2.5e-3, gamma=0.5, n_min=0.5, n_max=10.0),
+    dict(mu=0.8, c_m_per_n_gamma=2.5e-3, gamma=0.5),
+    dict(mu=0.8, c_m_per_n_gamma=2.5e-3, gamma=0.5, mode="table"),
+    dict(mu=0.5, c_m_per_n_gamma=3e-3, gamma=1 / 3, shape="disc", safety=1.5),
+    dict(mu=1.2, c_m_per_n_gamma=2e-3, gamma=0.0, half_length_m=0.02, k=4.0),
+    dict(mu=0.8, c_m_per_n_gamma=2.5e-3, gamma=0.5, mode="table", skew=0.9),
+    dict(mu=0.8, c_m_per_n_gamma=2.5e-3, gamma=0.5, n_min_n=0.5, n_max_n=10.0),
 ]
 LOADS = [(1.0, 0.004), (0.0, 0.0), (0.05, 0.0), (0.0, 0.01), (3.0, 0.02), (-2.0, -0.001),
          (12.0, 0.1)]
 
-RF_FLAGS = dict(mu="--mu", c="--c", gamma="--gamma", shape="--shape", length="--length",
-                k="--k", safety="--safety", mode="--mode", skew="--skew", n_min="--n-min",
-                n_max="--n-max")
+# Python's keyword -> host-sim required-force's flag.
+RF_FLAGS = dict(mu="--mu", c_m_per_n_gamma="--c", gamma="--gamma", shape="--shape",
+                half_length_m="--length", k="--k", safety="--safety", mode="--mode",
+                skew="--skew", n_min_n="--n-min", n_max_n="--n-max")
 
 
 @pytest.mark.parametrize("case", RF_CASES, ids=lambda c: ",".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in c.items()))
 def test_required_force_matches_cli(host_sim, case):
     ft = np.array([l[0] for l in LOADS])
     mn = np.array([l[1] for l in LOADS])
-    kw = dict(case)
-    mu, c, gamma = kw.pop("mu"), kw.pop("c"), kw.pop("gamma")
-    got = softgrip.required_force(ft, mn, mu, c, gamma, **kw)
+    got = softgrip.required_force(ft, mn, **case)
     assert got["normal_force"].shape == ft.shape
     for i, (f, m) in enumerate(LOADS):
         args = ["required-force", "--format", "json", "--ft", f, "--mn", m]
@@ -107,11 +106,11 @@ def test_required_force_matches_cli(host_sim, case):
 
 
 def test_required_force_broadcasts():
-    r = softgrip.required_force(np.array([[1.0], [2.0]]), np.array([0.0, 0.004, 0.008]), 0.8, 2.5e-3, 0.5)
+    r = softgrip.required_force(np.array([[1.0], [2.0]]), np.array([0.0, 0.004, 0.008]))
     assert r["normal_force"].shape == (2, 3)
     # More load, more force.
     assert np.all(np.diff(r["normal_force"], axis=0) > 0)
     assert np.all(np.diff(r["normal_force"], axis=1) > 0)
-    scalar = softgrip.required_force(1.0, 0.004, 0.8, 2.5e-3, 0.5)
+    scalar = softgrip.required_force(1.0, 0.004)
     assert scalar["normal_force"].shape == ()
     assert close(scalar["normal_force"], r["normal_force"][0, 1])

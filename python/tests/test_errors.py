@@ -72,15 +72,16 @@ def test_fls_errors(kwargs, param):
 @pytest.mark.parametrize(
     "kwargs,param",
     [
-        (dict(mu=0.0), "mu"), (dict(c=0.0), "c"), (dict(gamma=0.6), "gamma"),
-        (dict(length=-1.0), "length"), (dict(safety=0.5), "safety"), (dict(k=0.0), "k"),
-        (dict(n_min=0.0), "n_min"), (dict(n_max=0.1), "n_max"), (dict(skew=1.2, mode="table"), "skew"),
+        (dict(mu=0.0), "mu"), (dict(c_m_per_n_gamma=0.0), "c_m_per_n_gamma"),
+        (dict(gamma=0.6), "gamma"), (dict(half_length_m=-1.0), "half_length_m"),
+        (dict(safety=0.5), "safety"), (dict(k=0.0), "k"), (dict(n_min_n=0.0), "n_min_n"),
+        (dict(n_max_n=0.1), "n_max_n"), (dict(skew=1.2, mode="table"), "skew"),
         (dict(mode="exact"), "mode"), (dict(shape="cone"), "shape"),
         (dict(ft=[1.0, math.nan]), "ft"), (dict(mn=math.inf), "mn"),
     ],
 )
 def test_required_force_errors(kwargs, param):
-    args = dict(ft=1.0, mn=0.004, mu=0.8, c=2.5e-3, gamma=0.5)
+    args = dict(ft=1.0, mn=0.004, mu=0.8, c_m_per_n_gamma=2.5e-3, gamma=0.5)
     args.update(kwargs)
     raises_param(param, softgrip.required_force, **args)
 

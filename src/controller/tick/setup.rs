@@ -171,6 +171,19 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.config = config;
     }
 
+    /// Takes over a grip already applied by something else (a pre-grip, another
+    /// controller, a hand closed by its user): the command starts at `normal_force_n`,
+    /// clamped into `[N_min, N_max]`, instead of at `N_min`. From there the rate limits
+    /// apply as on any tick, so the first command moves from the existing grip by at most
+    /// one tick's rise or fall: no bump. A non-finite force leaves the command where it
+    /// is. Call it before the first tick; it keeps the rest of the state. Cost: two
+    /// comparisons.
+    pub fn start_at(&mut self, normal_force_n: T) {
+        if normal_force_n.is_finite() {
+            self.command = normal_force_n.max(self.n_min).min(self.n_max);
+        }
+    }
+
     /// Takes over from the controller `previous` that this one replaces (a
     /// reconfiguration): the command continues from the previous one (clamped into this
     /// configuration's `[N_min, N_max]`) instead of restarting at `N_min`, so a running

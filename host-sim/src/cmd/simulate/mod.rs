@@ -169,9 +169,9 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         "inprocess" => LinkKind::InProcess,
         "direct" => LinkKind::Direct,
         "qemu" => {
+            // The ELF is checked below, once the controllers are known to need it.
             let (qemu_dir, firmware) = default_paths();
             let firmware = args.firmware.clone().unwrap_or(firmware);
-            check_firmware(&firmware).map_err(CliError::Usage)?;
             LinkKind::Qemu {
                 qemu_dir: args.qemu.clone().unwrap_or(qemu_dir),
                 firmware,
@@ -212,6 +212,9 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
             short(&args.controller),
             short(&args.controller)
         )));
+    }
+    if let LinkKind::Qemu { firmware, .. } = &link {
+        check_firmware(firmware).map_err(CliError::Usage)?;
     }
     let device_runs = paths.len() * names.iter().filter(|n| n.starts_with("softgrip")).count();
     if matches!(link, LinkKind::Serial { .. }) && device_runs > 1 {

@@ -12,6 +12,27 @@ fn main() {
     println!("cargo:rerun-if-changed={}", memory_x.display());
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-env-changed=SOFTGRIP_TABLES_RS");
+    // Variants that pick the same thing are refused together, rather than one silently
+    // winning.
+    let on = |f: &str| std::env::var_os(format!("CARGO_FEATURE_{f}")).is_some();
+    for (a, b, what) in [
+        ("FAST_MATH", "SOFT_SQRT", "the tick's square root"),
+        (
+            "PRECOMPUTE_F64",
+            "PREBUILT_TABLES",
+            "how the tables are made",
+        ),
+    ] {
+        if on(a) && on(b) {
+            let name = |f: &str| f.to_lowercase().replace('_', "-");
+            eprintln!(
+                "features `{}` and `{}` each pick {what}: enable one",
+                name(a),
+                name(b)
+            );
+            std::process::exit(1);
+        }
+    }
     let out = PathBuf::from(std::env::var("OUT_DIR").unwrap_or_default());
     if std::env::var_os("CARGO_FEATURE_PREBUILT_TABLES").is_some() {
         // The firmware's prebuilt tables: the file `host-sim tables --format rust` wrote.

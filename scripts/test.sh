@@ -61,6 +61,18 @@ if [ "${SOFTGRIP_SKIP_CARGO:-0}" != 1 ]; then
                 --target thumbv7em-none-eabihf --features "$features" \
                 --target-dir target/firmware/build -- -D warnings || cargo_rc=$?
         done
+        # Mutually exclusive variants refuse to build together (firmware/src/main.rs).
+        for features in firmware,fast-math,soft-sqrt firmware,precompute-f64,prebuilt-tables; do
+            refusal="$(rustup run "$toolchain" cargo check -q -p softgrip-firmware \
+                --target thumbv7em-none-eabihf --features "$features" \
+                --target-dir target/firmware/build 2>&1 || true)"
+            if grep -q "each pick" <<<"$refusal"; then
+                echo "firmware: $features refused together, as it should be" >&2
+            else
+                echo "error: the firmware's features $features were not refused" >&2
+                cargo_rc=1
+            fi
+        done
     fi
     # The README's tour, run as written: a simulated grasp on the default in-process link,
     # a limit-surface sweep, one required force, and a small benchmark over the pty.

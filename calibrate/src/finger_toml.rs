@@ -19,10 +19,23 @@ fn num(v: f64) -> String {
     }
 }
 
+/// `v` to 4 significant digits, for people (comments, the text report).
+fn sig4(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return num(v);
+    }
+    let decimals = 3 - v.abs().log10().floor() as i32;
+    if (0..=9).contains(&decimals) {
+        format!("{v:.*}", decimals as usize)
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
 fn comment(e: &Estimate) -> String {
     let ci = e
         .ci95
-        .map(|[lo, hi]| format!("95 %: [{}, {}]", num(lo), num(hi)));
+        .map(|[lo, hi]| format!("95 %: [{}, {}]", sig4(lo), sig4(hi)));
     match (&e.reason, ci) {
         (Some(r), Some(ci)) => format!("  # not identified ({ci}): {r}"),
         (Some(r), None) => format!("  # not identified: {r}"),
@@ -81,8 +94,9 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
     s
 }
 
-/// The calibration for people: one line per parameter, value, interval, and for a held
-/// one "not identified: kept at X (conservative)" with the reason.
+/// The calibration for people: one line per parameter, value and interval to 4
+/// significant digits, and for a held one "not identified: kept at X (conservative)" with
+/// the reason.
 pub fn report_text(cal: &Calibration) -> String {
     let mut s = String::new();
     let sp = &cal.skewed_pressure;
@@ -101,7 +115,7 @@ pub fn report_text(cal: &Calibration) -> String {
         });
         match &e.reason {
             None => {
-                let _ = writeln!(s, "{name:<18} {}{ci}", num(e.value));
+                let _ = writeln!(s, "{name:<18} {}{ci}", sig4(e.value));
             }
             Some(r) => {
                 let _ = writeln!(s, "{name:<18} not identified: {r}{ci}");
@@ -125,4 +139,19 @@ pub fn report_text(cal: &Calibration) -> String {
         }
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers() {
+        assert_eq!(sig4(0.0025165), "0.002517");
+        assert_eq!(sig4(12.3456), "12.35");
+        assert_eq!(sig4(f64::INFINITY), "inf");
+        assert_eq!(num(2.0), "2.0");
+        assert_eq!(num(0.1), "0.1");
+        assert_eq!(num(f64::INFINITY), "inf");
+    }
 }

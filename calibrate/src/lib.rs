@@ -10,7 +10,7 @@
 //! - [`calibration`]: identifiability, 95 % intervals, conservative values: [`calibrate`];
 //! - [`interval`] and [`lsq`]: t quantiles, Wald intervals, the least-squares solver;
 //! - [`finger_toml`]: the finger TOML and the text report;
-//! - [`error`]: [`CalibError`].
+//! - [`error`]: the errors, [`CalibError`].
 //!
 //! Accuracy: exact data give the exact `c` and `γ` (to rounding), `μ` within 1e-4 and `k`
 //! within 1 % (the tabulated surface's interpolation). Cost: [`calibrate`] about 0.1 s
@@ -18,6 +18,8 @@
 //! a prebuilt grid a few milliseconds.
 
 #![forbid(unsafe_code)]
+// `!(x > 0.0)` is how the crate rejects NaN with the bad values, as the core does.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod calibration;
 pub mod contact_fit;

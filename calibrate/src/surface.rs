@@ -234,4 +234,30 @@ mod tests {
         let p = g.pitch(0.3, 1.3);
         assert!((g.utilisation(0.3, 1.3, 0.0, 0.0, p) - 1.0).abs() < 1e-9);
     }
+
+    /// docs/calibration.md's capacity directions: a lower `k`, no skew and a smaller
+    /// contact each shrink the surface along every ray (the utilisation of a fixed load
+    /// rises), so they are the conservative ends.
+    #[test]
+    fn capacity_falls_with_lower_k_no_skew_and_a_smaller_contact() {
+        let g = SurfaceGrid::build(FingerShape::Rect, 0.25, 8.0, 11, true).unwrap();
+        let l = 0.01;
+        for a in [1.5e-3, 3e-3, 6e-3, 1.2e-2] {
+            for deg in [0.0f64, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0] {
+                // A load in newtons and newton-metres at N = 1, μ = 1.
+                let (ft, mn) = (deg.to_radians().sin(), deg.to_radians().cos() * 5e-3);
+                let u =
+                    |kappa: f64, skew: f64, a: f64| g.utilisation(kappa, l / a, skew, ft, mn / a);
+                for kappa in [0.0, 0.25, 0.5, 0.75] {
+                    let lower_k = u(kappa + 0.25, 0.0, a);
+                    assert!(lower_k >= u(kappa, 0.0, a) * (1.0 - 1e-9), "k at {a} {deg}");
+                    assert!(u(kappa, 0.0, a) >= u(kappa, 0.9, a) * (1.0 - 1e-9), "skew");
+                    assert!(
+                        u(kappa, 0.0, a * 0.8) >= u(kappa, 0.0, a) * (1.0 - 1e-9),
+                        "a"
+                    );
+                }
+            }
+        }
+    }
 }

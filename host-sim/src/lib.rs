@@ -4,6 +4,8 @@
 //!   slip-prevention rule for one load), `simulate` (the grasp simulator, over [`sim`]) and
 //!   `tables` (table export and verification, limit-surface plots and sweeps), siblings
 //!   that share only [`args`], [`input`] and [`plot`].
+//! - [`experiment`]: lab experiments on a plant behind the [`experiment::Rig`] trait
+//!   (`host-sim experiment`; `host-sim calibrate` fits their files).
 //! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`).
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
 //! - [`sim`]: scenes, effects, ground truth, baselines, runs and their reports.
@@ -20,6 +22,7 @@ pub mod accuracy;
 pub mod args;
 pub mod bench;
 pub mod cmd;
+pub mod experiment;
 pub mod input;
 pub mod link;
 pub mod plot;

@@ -7,6 +7,7 @@
 
 use clap::{Parser, Subcommand};
 use host_sim::cmd::tables as tables_cmd;
+use host_sim::cmd::{calibrate as calibrate_cmd, experiment as experiment_cmd};
 use host_sim::cmd::{
     fls as fls_cmd, required_force as required_force_cmd, simulate as simulate_cmd,
 };
@@ -36,6 +37,10 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Regenerate the accuracy/time report (accuracy.md, accuracy.svg).
     Accuracy(accuracy::AccuracyArgs),
+    /// Lab experiments on a finger: the CSVs (and plots) a lab would record.
+    Experiment(experiment_cmd::ExperimentArgs),
+    /// Fit the finger's parameters to indentation and slip-onset CSVs, with 95 % intervals.
+    Calibrate(calibrate_cmd::CalibrateArgs),
 }
 
 fn main() -> ExitCode {
@@ -60,6 +65,8 @@ fn main() -> ExitCode {
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Tables(args) => tables_cmd::run(&args),
         Command::Bench(args) => bench::run_cmd(&args),
+        Command::Experiment(args) => experiment_cmd::run(&args),
+        Command::Calibrate(args) => calibrate_cmd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

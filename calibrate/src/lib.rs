@@ -1,0 +1,35 @@
+//! softgrip-calibrate: fits softgrip's finger parameters to a lab's measurements
+//! (docs/experiments.md, docs/calibration.md), so that `host-sim calibrate` and the
+//! Python package run the same code.
+//!
+//! - [`lab_csv`]: the two lab files (indentation, slip onsets), read with errors naming
+//!   file, line and column, and written;
+//! - [`contact_fit`]: `c` and `γ` of `a = c·N^γ` in closed form (log-log least squares);
+//! - [`surface`]: the exact limit surface tabulated over `1/k`, `l/a` and the skew;
+//! - [`friction_fit`]: the joint fit of `c`, `γ`, `μ`, `k` and the skew to both files;
+//! - [`calibration`]: identifiability, 95 % intervals, conservative values: [`calibrate`];
+//! - [`interval`] and [`lsq`]: t quantiles, Wald intervals, the least-squares solver;
+//! - [`finger_toml`]: the finger TOML and the text report;
+//! - [`error`]: the errors, [`CalibError`].
+//!
+//! Accuracy: exact data give the exact `c` and `γ` (to rounding), `μ` within 1e-4 and `k`
+//! within 1 % (the tabulated surface's interpolation). Cost: [`calibrate`] about 0.1 s
+//! (1 s when the skew is fitted), most of it tabulating the surface; [`calibrate_on`] with
+//! a prebuilt grid a few milliseconds.
+
+#![forbid(unsafe_code)]
+// `!(x > 0.0)` is how the crate rejects NaN with the bad values, as the core does.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod calibration;
+pub mod contact_fit;
+pub mod error;
+pub mod finger_toml;
+pub mod friction_fit;
+pub mod interval;
+pub mod lab_csv;
+pub mod lsq;
+pub mod surface;
+
+pub use calibration::{calibrate, calibrate_on, grid_for, Calibration, Estimate, Setup};
+pub use error::CalibError;

@@ -1,0 +1,81 @@
+//! The finger of `experiment`: from a scene or finger TOML (`--finger`: its `[finger]`
+//! table, and `[effect.skewed_pressure]` when its `effects` list the skew, read as the
+//! simulator reads them) or from the flags.
+
+use super::FingerArgs;
+use crate::experiment::FingerSpec;
+use crate::input::{read_capped_text, FINGER_CAP_BYTES};
+use crate::sim::effects::skewed_pressure::{SkewedPressure, SkewedPressureSettings};
+use crate::sim::effects::Effect;
+use crate::sim::finger::Finger;
+use crate::CliError;
+use serde::Deserialize;
+use softgrip::controller::{FingerShape, SkewParams};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The parts of a scene (or finger file) the experiments need; other keys are ignored.
+#[derive(Debug, Deserialize)]
+struct FingerFile {
+    finger: Finger,
+    #[serde(default)]
+    effects: Vec<String>,
+    #[serde(default)]
+    effect: BTreeMap<String, toml::Table>,
+}
+
+fn from_file(path: &Path) -> Result<FingerSpec, CliError> {
+    let usage = |m: String| CliError::Usage(format!("--finger: {}: {m}", path.display()));
+    let text = read_capped_text(path, "--finger", FINGER_CAP_BYTES)
+        .map_err(|e| CliError::Usage(e.to_string()))?;
+    let f: FingerFile = toml::from_str(&text).map_err(|e| usage(e.message().trim().to_string()))?;
+    let skew = if f.effects.iter().any(|e| e == "skewed_pressure") {
+        let table = f.effect.get("skewed_pressure").cloned().unwrap_or_default();
+        let settings: SkewedPressureSettings =
+            toml::Value::Table(table)
+                .try_into()
+                .map_err(|e: toml::de::Error| {
+                    usage(format!("effect.skewed_pressure: {}", e.message().trim()))
+                })?;
+        SkewedPressure::new(&settings, &f.finger).true_skew()
+    } else {
+        None
+    };
+    let g = &f.finger;
+    Ok(FingerSpec {
+        shape: g.shape,
+        mu: g.mu,
+        k: g.k,
+        c: g.c,
+        gamma: g.gamma,
+        half_length_m: g.half_length_m,
+        skew,
+    })
+}
+
+/// The finger the arguments describe.
+pub fn spec(args: &FingerArgs) -> Result<FingerSpec, CliError> {
+    if let Some(path) = &args.finger {
+        return from_file(path);
+    }
+    let shape = args.shape.unwrap_or(FingerShape::Rect);
+    let delta = args.skew.unwrap_or(0.0);
+    let default_locus = if shape == FingerShape::Disc {
+        0.0
+    } else {
+        delta / 2.0
+    };
+    Ok(FingerSpec {
+        shape,
+        mu: args.mu.unwrap_or(0.8),
+        k: args.k.unwrap_or(2.0),
+        c: args.c.unwrap_or(2.5e-3),
+        gamma: args.gamma.unwrap_or(0.5),
+        half_length_m: args.half_length.unwrap_or(0.01),
+        skew: (delta != 0.0).then_some(SkewParams {
+            delta_over_a: delta,
+            alpha: args.alpha.unwrap_or(1.1),
+            locus_over_a: args.locus.unwrap_or(default_locus),
+        }),
+    })
+}

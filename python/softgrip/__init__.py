@@ -11,7 +11,10 @@ times in seconds [s]; ``f``, ``m`` and ``d`` of a limit surface are dimensionles
 
 from __future__ import annotations
 
-from typing import Any, Optional
+import json
+import tomllib
+from os import PathLike
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -20,6 +23,8 @@ from ._softgrip import CONFIG_FIELDS, ConfigError, Controller, TickStatus
 
 __all__ = [
     "CONFIG_FIELDS",
+    "calibrate",
+    "load_finger",
     "ConfigError",
     "Controller",
     "TickStatus",
@@ -150,4 +155,78 @@ def required_force(
         r[key] = np.asarray(r[key], dtype=float).reshape(shape_out)
     r["status"] = np.asarray(r["status"], dtype=object).reshape(shape_out)
     r["ellipse_axes"] = tuple(r["ellipse_axes"])
+    return r
+
+
+def _finger_kwargs(finger: dict[str, Any], skew: Optional[dict[str, Any]]) -> dict[str, Any]:
+    """A finger table's keys as ``Controller`` keywords."""
+    k = finger.get("k", 2.0)
+    out = dict(
+        shape=finger.get("shape", "rect"),
+        k=float("inf") if k is None else float(k),
+        mu=float(finger["mu"]),
+        c_m_per_n_gamma=float(finger["c"]),
+        gamma=float(finger["gamma"]),
+        half_length_m=float(finger.get("half_length_m", 0.01)),
+    )
+    if skew:
+        out["skew"] = (
+            float(skew["delta_over_a"]),
+            float(skew.get("alpha", 1.1)),
+            float(skew.get("locus_over_a", skew["delta_over_a"] / 2.0)),
+        )
+    return out
+
+
+def load_finger(path: Union[str, PathLike]) -> dict[str, Any]:
+    """The finger of a TOML file (``host-sim calibrate --out``'s, or a scene), as
+    ``Controller`` keywords: ``shape`` ("rect": a hemicylinder, "disc": a hemisphere),
+    ``k``, ``mu``, ``c_m_per_n_gamma`` (the file's ``c``), ``gamma``, ``half_length_m``
+    and, when the file describes a skewed pressure (``[effect.skewed_pressure]``),
+    ``skew``. ``Controller(**load_finger("finger.toml"), safety=1.3)`` runs it."""
+    with open(path, "rb") as f:
+        doc = tomllib.load(f)
+    if "finger" not in doc:
+        raise ConfigError(f"{path}: no [finger] table")
+    skew = doc.get("effect", {}).get("skewed_pressure")
+    return _finger_kwargs(doc["finger"], skew)
+
+
+def calibrate(
+    indentation: Union[str, PathLike],
+    slip: Union[str, PathLike],
+    *,
+    shape: str = "rect",
+    half_length_m: float = 0.01,
+    conservative: bool = False,
+) -> dict[str, Any]:
+    """Fits the finger's parameters to a lab's files, as ``host-sim calibrate`` (the same
+    code: the crate ``softgrip-calibrate``; docs/calibration.md).
+
+    ``indentation``: a CSV ``normal_force_n,half_width_m``; ``slip``: a CSV
+    ``normal_force_n,tangential_force_n,torsional_moment_nm``, one row per slip onset
+    (docs/experiments.md). ``shape`` "rect" (a hemicylinder) or "disc" (a hemisphere);
+    ``half_length_m`` the hemicylinder's half-length l [m] (measured, not fitted);
+    ``conservative`` moves every parameter to the end of its 95 % interval that lowers the
+    grip's capacity.
+
+    Returns ``host-sim calibrate --format json``'s object: each parameter under its TOML
+    name (``mu``, ``k``, ``c``, ``gamma``, ``skewed_pressure``) as ``{"value", "ci95",
+    "identified", "reason"}``, plus ``fit``; and ``finger_toml`` (the text ``--out``
+    writes) and ``controller``, the fitted finger as ``Controller`` keywords.
+
+    Raises ``ConfigError`` naming ``indentation`` or ``slip`` for a bad file (its message
+    gives file:line:column) or too few rows (it states the minimum).
+    """
+    report, toml_text = _softgrip.calibrate(
+        str(indentation),
+        str(slip),
+        shape=str(shape),
+        half_length_m=float(half_length_m),
+        conservative=bool(conservative),
+    )
+    r = json.loads(report)
+    r["finger_toml"] = toml_text
+    doc = tomllib.loads(toml_text)
+    r["controller"] = _finger_kwargs(doc["finger"], doc.get("effect", {}).get("skewed_pressure"))
     return r

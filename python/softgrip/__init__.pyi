@@ -1,3 +1,4 @@
+import os
 from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
@@ -52,3 +53,17 @@ def required_force(
     """N_req(s) [N] for loads ft [N], mn [N·m], vectorised; as host-sim required-force.
     Keywords: Controller's, with its defaults ("rect" is a hemicylinder, "disc" a
     hemisphere)."""
+
+def load_finger(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
+    """A finger TOML (calibrate's --out, or a scene) as Controller keywords."""
+
+def calibrate(
+    indentation: Union[str, "os.PathLike[str]"],
+    slip: Union[str, "os.PathLike[str]"],
+    *,
+    shape: Literal["rect", "disc"] = "rect",
+    half_length_m: float = 0.01,
+    conservative: bool = False,
+) -> dict[str, Any]:
+    """Fits mu, k, c, gamma and the skew to lab CSVs, as host-sim calibrate; returns its JSON
+    plus finger_toml and controller (Controller keywords). "rect" is a hemicylinder."""

@@ -7,6 +7,7 @@
 
 #![forbid(unsafe_code)]
 
+mod calibrate;
 mod config;
 mod controller;
 mod rule;
@@ -127,6 +128,7 @@ fn _softgrip(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(required_force, m)?)?;
     m.add_function(wrap_pyfunction!(default_config, m)?)?;
     m.add_function(wrap_pyfunction!(half_width, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     m.add_class::<Controller>()?;
     m.add_class::<TickStatus>()?;
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;

@@ -1,0 +1,77 @@
+//! `calibrate`: the finger's parameters fitted to lab files, by the same code as
+//! `host-sim calibrate` (the crate `softgrip-calibrate`).
+
+use crate::*;
+use softgrip_calibrate::finger_toml::finger_toml;
+use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
+use softgrip_calibrate::{CalibError, Setup};
+
+/// Largest lab file read [bytes], as `host-sim calibrate`.
+const CSV_CAP_BYTES: u64 = 64 << 20;
+
+fn read(py: Python<'_>, param: &str, path: &std::path::Path) -> PyResult<(String, String)> {
+    let name = path.display().to_string();
+    let size = std::fs::metadata(path)
+        .map_err(|e| bad(py, param, format!("{param}: {name}: {e}")))?
+        .len();
+    if size > CSV_CAP_BYTES {
+        return Err(bad(
+            py,
+            param,
+            format!("{param}: {name}: {size} bytes, more than the {CSV_CAP_BYTES} read"),
+        ));
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| bad(py, param, format!("{param}: {name}: {e}")))?;
+    Ok((name, text))
+}
+
+/// A calibration error as a `ConfigError` whose `param` is the file's keyword.
+fn calib_err(py: Python<'_>, e: CalibError, ind_name: &str) -> PyErr {
+    let param = match &e {
+        CalibError::Cell { file, .. }
+        | CalibError::Header { file, .. }
+        | CalibError::TooFew { file, .. } => {
+            if file == ind_name {
+                "indentation"
+            } else {
+                "slip"
+            }
+        }
+        CalibError::Setting(_) => "half_length_m",
+    };
+    bad(py, param, e.to_string())
+}
+
+/// Fits the finger to the two lab files; returns `(report JSON, finger TOML)`.
+#[pyfunction]
+#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false))]
+pub(crate) fn calibrate(
+    py: Python<'_>,
+    indentation: std::path::PathBuf,
+    slip: std::path::PathBuf,
+    shape: &str,
+    half_length_m: f64,
+    conservative: bool,
+) -> PyResult<(String, String)> {
+    let setup = Setup {
+        shape: shape_of(py, shape)?,
+        half_length_m: finite(py, "half_length_m", half_length_m)?,
+    };
+    let (ind_name, ind_text) = read(py, "indentation", &indentation)?;
+    let (slip_name, slip_text) = read(py, "slip", &slip)?;
+    let ind = parse_indentation(&ind_name, &ind_text).map_err(|e| calib_err(py, e, &ind_name))?;
+    let onsets = parse_slip(&slip_name, &slip_text).map_err(|e| calib_err(py, e, &ind_name))?;
+    let fitted = softgrip_calibrate::calibrate(&setup, &ind_name, &ind, &slip_name, &onsets)
+        .map_err(|e| calib_err(py, e, &ind_name))?;
+    let cal = if conservative {
+        fitted.conservative()
+    } else {
+        fitted
+    };
+    let json = serde_json::to_string(&cal).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok((
+        json,
+        finger_toml(&cal, &format!("{ind_name} and {slip_name}")),
+    ))
+}

@@ -1,0 +1,67 @@
+"""softgrip.calibrate and softgrip.load_finger: the same fit as host-sim calibrate, on lab
+files host-sim experiment writes, and a calibrated finger that Controller runs."""
+
+import json
+import subprocess
+
+import pytest
+
+import softgrip
+
+
+@pytest.fixture(scope="module")
+def lab(host_sim, tmp_path_factory):
+    out = tmp_path_factory.mktemp("lab")
+    subprocess.run(
+        [host_sim, "experiment", "all", "--plant", "fls", "--k", "3", "--mu", "0.7",
+         "--noise", "0.02", "--seed", "5", "--out", out],
+        check=True, capture_output=True,
+    )
+    return out
+
+
+def test_calibrate_equals_the_cli(host_sim, lab, tmp_path):
+    toml_path = tmp_path / "finger.toml"
+    cli = subprocess.run(
+        [host_sim, "calibrate", "--indentation", lab / "indentation.csv", "--slip",
+         lab / "slip.csv", "--format", "json", "--out", toml_path],
+        check=True, capture_output=True, text=True,
+    )
+    want = json.loads(cli.stdout)
+    got = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv")
+    for key in want:
+        assert got[key] == want[key], key
+    # The recovered finger is close to the one the data came from.
+    assert got["mu"]["ci95"][0] <= 0.7 <= got["mu"]["ci95"][1]
+    # The TOML the CLI writes reads back as the same Controller keywords.
+    assert softgrip.load_finger(toml_path) == got["controller"]
+    c = softgrip.Controller(**got["controller"], mode="table")
+    assert c.config["mu"] == got["mu"]["value"]
+    assert c.config["c_m_per_n_gamma"] == got["c"]["value"]
+
+
+def test_conservative_lowers_mu(lab):
+    fit = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv")
+    low = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", conservative=True)
+    assert low["mu"]["value"] == fit["mu"]["ci95"][0] < fit["mu"]["value"]
+    assert low["conservative"] is True
+
+
+def test_a_bad_row_names_the_file_line_and_column(lab, tmp_path):
+    bad = tmp_path / "slip.csv"
+    lines = (lab / "slip.csv").read_text().splitlines()
+    lines[3] = "1.0,abc,0"
+    bad.write_text("\n".join(lines) + "\n")
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.calibrate(lab / "indentation.csv", bad)
+    assert e.value.param == "slip"
+    assert f"{bad}:4:2" in str(e.value), str(e.value)
+
+
+def test_too_few_rows_state_the_minimum(lab, tmp_path):
+    few = tmp_path / "indentation.csv"
+    few.write_text("normal_force_n,half_width_m\n1.0,0.0025\n")
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.calibrate(few, lab / "slip.csv")
+    assert e.value.param == "indentation"
+    assert "at least" in str(e.value)

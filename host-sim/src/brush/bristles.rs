@@ -52,6 +52,11 @@ pub struct BristleWrench {
     pub stuck_moment_n: [f64; 2],
     /// Elastic energy stored in the bristles [J].
     pub energy_j: f64,
+    /// The consistent tangent stiffness `K` (`dW ≈ −K·dq` for a pose change `dq`, from the
+    /// same committed anchors), upper triangle `[K11, K12, K13, K22, K23, K33]`: stuck
+    /// bristles `k_t A·BᵀB`, sliding ones `k_t A·(s_k/|s|)·Bᵀ(I − ŝŝᵀ)B` (their force turns
+    /// with the stretch); filled only by [`Bristles::update`] with `tangent`.
+    pub tangent: [f64; 6],
 }
 
 /// The bristles' state: each element's anchor and whether it slid in the last update.
@@ -84,9 +89,30 @@ impl Bristles {
         }
     }
 
+    /// `(loaded, sliding)`: the elements with `p > 0` and those of them that slid in the
+    /// last update.
+    pub fn counts(&self, pressure_pa: &[f64]) -> (usize, usize) {
+        let mut out = (0, 0);
+        for (p, s) in pressure_pa.iter().zip(&self.sliding) {
+            if *p > 0.0 {
+                out.0 += 1;
+                out.1 += usize::from(*s);
+            }
+        }
+        out
+    }
+
     /// Moves the object to `q` under the pressures `pressure_pa`, applies the stick–slip
     /// rules and returns the wrench on the object.
-    pub fn update(&mut self, patch: &Patch, pressure_pa: &[f64], q: Pose) -> BristleWrench {
+    /// With `tangent`, also sums the consistent tangent stiffness
+    /// ([`BristleWrench::tangent`]).
+    pub fn update(
+        &mut self,
+        patch: &Patch,
+        pressure_pa: &[f64],
+        q: Pose,
+        tangent: bool,
+    ) -> BristleWrench {
         let ka = self.k_pa_per_m * patch.area_m2;
         let mut w = BristleWrench::default();
         for i in 0..patch.len() {
@@ -110,10 +136,21 @@ impl Bristles {
             let slides = stretch > limit;
             if slides {
                 let keep = patch.mu_kinetic[i] * p / self.k_pa_per_m / stretch;
+                if tangent {
+                    let (ex, ey) = (sx / stretch, sy / stretch);
+                    let m = [
+                        keep * (1.0 - ex * ex),
+                        -keep * ex * ey,
+                        keep * (1.0 - ey * ey),
+                    ];
+                    add_tangent(&mut w.tangent, ka, m, x, y);
+                }
                 sx *= keep;
                 sy *= keep;
                 self.anchor_x_m[i] = dx - sx;
                 self.anchor_y_m[i] = dy - sy;
+            } else if tangent {
+                add_tangent(&mut w.tangent, ka, [1.0, 0.0, 1.0], x, y);
             }
             self.sliding[i] = slides;
             let (fx, fy) = (-ka * sx, -ka * sy);
@@ -135,4 +172,15 @@ impl Bristles {
         }
         w
     }
+}
+
+/// Adds `ka·BᵀPB` to the tangent's upper triangle, `P = [[a, b], [b, d]]` given as
+/// `[a, b, d]`, `B = [[1, 0, −y], [0, 1, x]]`.
+fn add_tangent(t: &mut [f64; 6], ka: f64, [a, b, d]: [f64; 3], x: f64, y: f64) {
+    t[0] += ka * a;
+    t[1] += ka * b;
+    t[2] += ka * (x * b - y * a);
+    t[3] += ka * d;
+    t[4] += ka * (x * d - y * b);
+    t[5] += ka * (y * y * a - 2.0 * x * y * b + x * x * d);
 }

@@ -86,7 +86,15 @@ impl Contact {
 
     /// Moves the object to `q` and returns the bristles' wrench on it.
     pub fn displace(&mut self, q: Pose) -> BristleWrench {
-        self.bristles.update(&self.patch, &self.pressure_pa, q)
+        self.bristles
+            .update(&self.patch, &self.pressure_pa, q, false)
+    }
+
+    /// [`Contact::displace`] that also sums the bristles' consistent tangent stiffness
+    /// ([`BristleWrench::tangent`]), for quasi-static solves.
+    pub fn displace_with_tangent(&mut self, q: Pose) -> BristleWrench {
+        self.bristles
+            .update(&self.patch, &self.pressure_pa, q, true)
     }
 
     /// Resets the bristles to zero stretch at `q`.
@@ -125,6 +133,17 @@ impl Contact {
             m / f
         } else {
             0.0
+        }
+    }
+
+    /// The fraction of the loaded elements whose bristle did not slide in the last
+    /// [`Contact::displace`] (1 with nothing loaded).
+    pub fn stuck_fraction(&self) -> f64 {
+        let (loaded, sliding) = self.bristles.counts(&self.pressure_pa);
+        if loaded == 0 {
+            1.0
+        } else {
+            1.0 - sliding as f64 / loaded as f64
         }
     }
 

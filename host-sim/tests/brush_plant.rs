@@ -85,11 +85,11 @@ fn full_slip_limits_equal_brute_force_sums_over_the_elements() {
     c.press(normal_n, 0.0);
     let (patch, p) = (c.patch(), c.pressure_pa());
     let (mut force, mut torsion, mut total) = (0.0, 0.0, 0.0);
-    for i in 0..patch.len() {
-        let t = MU * p[i] * patch.area_m2;
-        total += p[i] * patch.area_m2;
+    for ((pi, x), y) in p.iter().zip(&patch.x_m).zip(&patch.y_m) {
+        let t = MU * pi * patch.area_m2;
+        total += pi * patch.area_m2;
         force += t;
-        torsion += t * patch.x_m[i].hypot(patch.y_m[i]);
+        torsion += t * x.hypot(*y);
     }
     assert!(rel(total, normal_n) < 1e-9, "{total}");
     assert!(rel(force, MU * normal_n) < 1e-9);
@@ -152,9 +152,9 @@ fn onset_and_half_width_converge_with_elements() {
 fn object_motion_converges_as_the_tick_shrinks() {
     let f = finger(BrushSettings::default());
     let mut ends = Vec::new();
-    for dt in [1e-3, 5e-4, 2.5e-4, 1.25e-4] {
+    for dt in [1e-3f64, 5e-4, 2.5e-4, 1.25e-4] {
         let mut plant = f.plant(0.2, 1e-4);
-        let steps = (0.05 / dt as f64).round() as usize;
+        let steps = (0.05 / dt).round() as usize;
         for _ in 0..steps {
             plant.step(2.0, [0.3, 3.5], 0.002, dt);
         }

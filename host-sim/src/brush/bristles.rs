@@ -115,8 +115,8 @@ impl Bristles {
     ) -> BristleWrench {
         let ka = self.k_pa_per_m * patch.area_m2;
         let mut w = BristleWrench::default();
-        for i in 0..patch.len() {
-            let (x, y, p) = (patch.x_m[i], patch.y_m[i], pressure_pa[i]);
+        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+            let (x, y) = (patch.x_m[i], patch.y_m[i]);
             let dx = q.ux_m - q.theta_rad * y;
             let dy = q.uy_m + q.theta_rad * x;
             if p <= 0.0 {

@@ -358,7 +358,7 @@ impl Scene {
                 at("finger", if f.c.is_nan() { "gamma" } else { "c" })
             )));
         }
-        if !f.c.is_nan() && !(f.c > 0.0 && f.c.is_finite()) {
+        if !(f.c.is_nan() || f.c > 0.0 && f.c.is_finite()) {
             return Err(SceneError(format!(
                 "{}finger.c: {} must be a finite number > 0",
                 at("finger", "c"),

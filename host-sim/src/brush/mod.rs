@@ -20,14 +20,19 @@
 //! grasp's state, stepped once a tick by the run loop.
 //!
 //! **Accuracy.** The sums over the patch converge with the element count at about second
-//! order (24×24 elements: the Winkler cylinder's `N(δ)` within 1 %, its half-width within
-//! 2 % at a contact 6 elements wide; `tests/brush_plant.rs`); the motion is first order in
-//! the sub-step.
+//! order (hemicylinder, `R = 20 mm`, 1 N: the half-width against the exact circle within
+//! 1.2e-3 at 24 elements per side and 3e-5 at 96, `N(δ)` within 9.5e-4 and 7.5e-5); the
+//! gross-slip onset of a combined load changes by 2.2e-5 from 24 to 48 elements; the
+//! motion is first order in the sub-step (`tests/brush_plant.rs` prints the figures).
 //!
-//! **Cost** per 1 ms tick at the shipped scene's settings (24×24 elements): one pressure
-//! solve (1–4 passes warm) and 1–3 bristle passes, about 15 µs on one core of the
-//! development VM, measured by `cargo run --release -p host-sim -- simulate
-//! host-sim/scenes/brush_lift_hold.toml` (summary metric `plant_step_s` / ticks).
+//! **Cost** per 1 ms tick in `brush_lift_hold` (24×24 elements; one pressure solve, warm,
+//! and one sub-step at its forces): 8.2–8.6 µs on one core of the 2-core development VM
+//! (three runs, load average 5 from other builds), the run's metric
+//! `brush_step_per_tick_s`, measured by
+//! `cargo run --release -p host-sim -- simulate host-sim/scenes/brush_lift_hold.toml`.
+//! Each bristle pass is one sweep over the 576 elements; the pressure solve 1–4 sweeps.
+//! The whole run (softgrip's controller included) ran at 15.6× real time pinned to one
+//! core (`taskset -c 1`), against 16.3× for `lift_hold` on the limit surface.
 
 pub mod bristles;
 pub mod contact;

@@ -251,6 +251,7 @@ fn run_into(
     let mut dropped_at: Option<f64> = None;
     let mut missing = 0u64;
     let mut core = Duration::ZERO;
+    let (mut brush_s, mut substeps) = (Duration::ZERO, 0u64);
     let mut control = Duration::ZERO;
     let period_us = (1e6 / scene.tick_hz).round().max(1.0) as u64;
 
@@ -297,6 +298,8 @@ fn run_into(
         if let Some(p) = plant.as_mut() {
             let dropped = dropped_at.is_some();
             let (tl, slipping, ft, mn) = brush_tick(p, &mut w, dropped);
+            brush_s += since(t2);
+            substeps += p.report().substeps as u64;
             (dist, rot) = (p.report().slip_distance_m, p.report().slip_rotation_rad);
             if slipping && !dropped {
                 if stuck_for >= stick_ticks {
@@ -417,6 +420,17 @@ fn run_into(
     metrics.insert("controller_and_link_s".to_string(), control.as_secs_f64());
     if let Some(t) = dropped_at {
         metrics.insert("dropped_at_s".to_string(), t);
+    }
+    if plant.is_some() && ticks > 0 {
+        // The brush plant's own step (pressure solve, sub-steps): wall time per tick.
+        metrics.insert(
+            "brush_step_per_tick_s".to_string(),
+            brush_s.as_secs_f64() / ticks as f64,
+        );
+        metrics.insert(
+            "brush_substeps_per_tick".to_string(),
+            substeps as f64 / ticks as f64,
+        );
     }
     if pipeline.names().iter().any(|n| n == "partial_slip") {
         metrics.insert("max_micro_slip_m".to_string(), max_micro);

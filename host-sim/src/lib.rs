@@ -8,6 +8,9 @@
 //!   (`host-sim experiment`; `host-sim calibrate` fits their files).
 //! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`).
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
+//! - [`brush`]: the brush finger, a physical fingertip plant of its own (elastic
+//!   foundation, stick–slip bristles, object dynamics) that the simulator can use as its
+//!   ground truth instead of softgrip's limit surface (`[finger] model = "brush"`).
 //! - [`sim`]: scenes, effects, ground truth, baselines, runs and their reports.
 //! - [`plot`]: limit-surface plots (`fls --plot`, `tables`).
 //! - [`progress`]: the progress bar of the long commands, on stderr.
@@ -21,6 +24,7 @@
 pub mod accuracy;
 pub mod args;
 pub mod bench;
+pub mod brush;
 pub mod cmd;
 pub mod experiment;
 pub mod input;

@@ -3,10 +3,12 @@
 use super::*;
 
 /// The verdict on one run: for a scene that should hold (`expected_slip == false`),
-/// `held` if it had no slip event, else `SLIPPED`; for an overload scene, `overload
-/// (slipped as expected)` if it slipped, else `held (unexpected)`.
+/// `held` if it had no slip event and was not dropped, else `SLIPPED`; for an overload
+/// scene, `overload (slipped as expected)` if it slipped or was dropped, else `held
+/// (unexpected)`. (On the limit surface a drop always follows a slip event; the brush
+/// finger can also lose the object by creep, its centre still stuck.)
 pub fn verdict(run: &RunSummary) -> &'static str {
-    match (run.expected_slip, run.slip_events > 0) {
+    match (run.expected_slip, run.slip_events > 0 || run.dropped) {
         (false, false) => "held",
         (false, true) => "SLIPPED",
         (true, true) => "overload (slipped as expected)",

@@ -30,12 +30,13 @@ mod config;
 
 pub use config::*;
 
+use crate::brush::BrushPlant;
 use crate::sim::controllers::{self, LinkKind};
 use crate::sim::effects::{LinkFate, World};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::scene::Scene;
 use crate::sim::task;
-use crate::sim::truth::Truth;
+use crate::sim::truth::{TrueLoad, Truth};
 use indicatif::ProgressBar;
 use softgrip::protocol::SensorFrame;
 use std::collections::{BTreeMap, VecDeque};
@@ -221,6 +222,12 @@ fn run_into(
         }
     };
     let mut ctl = controllers::build(controller, &cfg, constant_n, link_kind)?;
+    // The brush finger, when the scene's finger is one: its plant replaces the limit
+    // surface and the quasi-static slip accounting below.
+    let mut plant = scene
+        .finger
+        .brush_finger()?
+        .map(|b| b.plant(scene.object.mass_kg, scene.object.inertia_kg_m2));
 
     let dt = 1.0 / scene.tick_hz;
     let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
@@ -244,6 +251,7 @@ fn run_into(
     let mut dropped_at: Option<f64> = None;
     let mut missing = 0u64;
     let mut core = Duration::ZERO;
+    let (mut brush_s, mut substeps) = (Duration::ZERO, 0u64);
     let mut control = Duration::ZERO;
     let period_us = (1e6 / scene.tick_hz).round().max(1.0) as u64;
 
@@ -257,12 +265,15 @@ fn run_into(
         core += since(t0);
         pipeline.load(&mut w);
 
-        let [fx, fy] = w.contact_force_n();
+        let ([fx, fy], moment) = match &plant {
+            None => (w.contact_force_n(), w.contact_moment_nm()),
+            Some(p) => (p.report().f_t_n, p.report().m_n_nm),
+        };
         let mut frame = SensorFrame {
             seq: k as u32,
             timestamp_us: (k + 1) * period_us,
             tangential_force_n: [fx as f32, fy as f32],
-            torsional_moment_nm: w.contact_moment_nm() as f32,
+            torsional_moment_nm: moment as f32,
             normal_force_n: w.normal_n as f32,
             slip: Default::default(),
         };
@@ -284,6 +295,46 @@ fn run_into(
         control += since(t1);
 
         let t2 = now(untimed);
+        if let Some(p) = plant.as_mut() {
+            let dropped = dropped_at.is_some();
+            let (tl, slipping, ft, mn) = brush_tick(p, &mut w, dropped);
+            brush_s += since(t2);
+            substeps += p.report().substeps as u64;
+            (dist, rot) = (p.report().slip_distance_m, p.report().slip_rotation_rad);
+            if slipping && !dropped {
+                if stuck_for >= stick_ticks {
+                    events += 1;
+                }
+                stuck_for = 0;
+            } else if !dropped {
+                stuck_for = stuck_for.saturating_add(1);
+            }
+            if !dropped && is_drop(dist, rot) {
+                dropped_at = Some(w.t_s);
+            }
+            core += since(t2);
+            pipeline.contact(&mut w);
+            let t3 = now(untimed);
+            slip_seen.push_back(slipping);
+            sum_n += w.normal_n;
+            peak_n = peak_n.max(w.normal_n);
+            max_u = max_u.max(tl.utilisation);
+            if let Some(sink) = sink.as_deref_mut() {
+                sink.sample(&sample(
+                    &w,
+                    &sensed,
+                    (ft, mn),
+                    &tl,
+                    slipping,
+                    (dist, rot),
+                    status,
+                ))?;
+            }
+            core += since(t3);
+            actuate(&mut pipeline, &mut w, has_actuator);
+            report_progress(progress, k);
+            continue;
+        }
         w.half_width_eq_m = truth.half_width_m(w.normal_n);
         w.half_width_m = w.half_width_eq_m;
         core += since(t2);
@@ -326,38 +377,20 @@ fn run_into(
             max_u = max_u.max(tl.utilisation);
         }
         max_micro = max_micro.max(w.micro_slip_m);
-        let [mx, my] = sensed.tangential_force_n;
         if let Some(sink) = sink.as_deref_mut() {
-            sink.sample(&Sample {
-                t_s: w.t_s,
-                ft_n: ft,
-                mn_nm: mn,
-                ft_meas_n: f64::from(mx).hypot(f64::from(my)),
-                mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
-                n_cmd_n: w.command_n,
-                n_true_n: w.normal_n,
-                a_true_m: w.half_width_m,
-                f_norm: tl.f_norm,
-                m_norm: tl.m_norm,
-                pitch: tl.pitch,
-                utilisation: tl.utilisation,
+            sink.sample(&sample(
+                &w,
+                &sensed,
+                (ft, mn),
+                &tl,
                 slipping,
-                slip_distance_m: dist,
-                slip_rotation_rad: rot,
+                (dist, rot),
                 status,
-            })?;
+            ))?;
         }
         core += since(t3);
-        if has_actuator {
-            pipeline.actuate(&mut w);
-        } else {
-            w.normal_n = w.command_n;
-        }
-        if k % 1000 == 999 {
-            if let Some(p) = progress {
-                p.inc(1000);
-            }
-        }
+        actuate(&mut pipeline, &mut w, has_actuator);
+        report_progress(progress, k);
     }
     if let Some(p) = progress {
         p.inc(ticks % 1000);
@@ -388,10 +421,21 @@ fn run_into(
     if let Some(t) = dropped_at {
         metrics.insert("dropped_at_s".to_string(), t);
     }
+    if plant.is_some() && ticks > 0 {
+        // The brush plant's own step (pressure solve, sub-steps): wall time per tick.
+        metrics.insert(
+            "brush_step_per_tick_s".to_string(),
+            brush_s.as_secs_f64() / ticks as f64,
+        );
+        metrics.insert(
+            "brush_substeps_per_tick".to_string(),
+            substeps as f64 / ticks as f64,
+        );
+    }
     if pipeline.names().iter().any(|n| n == "partial_slip") {
         metrics.insert("max_micro_slip_m".to_string(), max_micro);
     }
-    let surface = if options.skip_samples {
+    let surface = if options.skip_samples || plant.is_some() {
         Vec::new()
     } else {
         truth.normalised_surface(truth.half_width_m(mean_n.max(cfg.n_min_n)))
@@ -424,4 +468,83 @@ fn run_into(
         samples: Vec::new(),
         surface,
     })
+}
+
+/// Stage 4 of the step: the actuator effect, or the command applied as it is.
+fn actuate(pipeline: &mut crate::sim::effects::Pipeline, w: &mut World, has_actuator: bool) {
+    if has_actuator {
+        pipeline.actuate(w);
+    } else {
+        w.normal_n = w.command_n;
+    }
+}
+
+/// Advances the progress bar every 1000 ticks.
+fn report_progress(progress: Option<&ProgressBar>, k: u64) {
+    if k % 1000 == 999 {
+        if let Some(p) = progress {
+            p.inc(1000);
+        }
+    }
+}
+
+/// One tick's sample.
+fn sample(
+    w: &World,
+    sensed: &SensorFrame,
+    (ft, mn): (f64, f64),
+    tl: &TrueLoad,
+    slipping: bool,
+    (dist, rot): (f64, f64),
+    status: &'static str,
+) -> Sample {
+    let [mx, my] = sensed.tangential_force_n;
+    Sample {
+        t_s: w.t_s,
+        ft_n: ft,
+        mn_nm: mn,
+        ft_meas_n: f64::from(mx).hypot(f64::from(my)),
+        mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
+        n_cmd_n: w.command_n,
+        n_true_n: w.normal_n,
+        a_true_m: w.half_width_m,
+        f_norm: tl.f_norm,
+        m_norm: tl.m_norm,
+        pitch: tl.pitch,
+        utilisation: tl.utilisation,
+        slipping,
+        slip_distance_m: dist,
+        slip_rotation_rad: rot,
+        status,
+    }
+}
+
+/// The brush plant's step for one tick (unless the object is already `dropped`), and
+/// what the run records of it: the load state, whether the contact slides grossly, and
+/// the contact's `|f_t|` and `|m_n|`. For the brush finger `utilisation` is the fraction
+/// of the loaded elements that slide (1 in gross slip), `f_norm = |f_t|/(μ_s N)`,
+/// `m_norm = |m_n|/(μ_s N a)` and `pitch` is 0 (there is no limit surface). Sets the
+/// world's half-width, utilisation and sliding for the effects.
+fn brush_tick(plant: &mut BrushPlant, w: &mut World, dropped: bool) -> (TrueLoad, bool, f64, f64) {
+    let r = if dropped {
+        plant.report()
+    } else {
+        plant.step(w.normal_n, w.force_n, w.moment_nm, w.dt_s)
+    };
+    let ft = r.f_t_n[0].hypot(r.f_t_n[1]);
+    let mn = r.m_n_nm.abs();
+    let cap = plant.mu_static() * r.normal_n;
+    let ratio = |x: f64, d: f64| if d > 0.0 { x / d } else { 0.0 };
+    let tl = TrueLoad {
+        f_norm: ratio(ft, cap),
+        m_norm: ratio(mn, cap * r.half_width_m),
+        pitch: 0.0,
+        utilisation: 1.0 - r.stuck_fraction,
+    };
+    w.half_width_eq_m = r.half_width_m;
+    w.half_width_m = r.half_width_m;
+    w.true_utilisation = tl.utilisation;
+    let slipping = r.gross_slip;
+    w.sliding = slipping && !dropped;
+    (tl, slipping, ft, mn)
 }

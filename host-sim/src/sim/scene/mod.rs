@@ -49,7 +49,7 @@
 
 use crate::input::{short, short_num, SCENE_CAP_BYTES};
 use crate::sim::effects::{self, EffectSettings, NAMES as EFFECT_NAMES};
-pub use crate::sim::finger::Finger;
+pub use crate::sim::finger::{Finger, FingerModel};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -268,6 +268,7 @@ impl Scene {
             }
         })?;
         scene.check(text)?;
+        scene.fit_brush_law();
         scene.effect_settings = scene.read_effect_settings(text)?;
         Ok(scene)
     }
@@ -291,6 +292,90 @@ impl Scene {
             }
         }
         Ok(settings)
+    }
+
+    /// Whether the brush plant will fit `c` and `gamma` (a brush finger without them).
+    fn brush_fits_law(&self) -> bool {
+        self.finger.model == FingerModel::Brush
+            && self.finger.c.is_nan()
+            && self.finger.gamma.is_nan()
+    }
+
+    /// For a brush finger without `c` and `gamma`: the power law through the plant's own
+    /// half-width at the controller's least and greatest force
+    /// ([`Finger::fit_brush_contact_law`]). Runs after [`Scene::check`].
+    fn fit_brush_law(&mut self) {
+        if !self.brush_fits_law() {
+            return;
+        }
+        let Ok(Some(brush)) = self.finger.brush_finger() else {
+            return;
+        };
+        let d = softgrip::controller::ControllerConfig::default();
+        let lo = self.controller.n_min_n.unwrap_or(d.n_min_n);
+        let hi = self.controller.n_max_n.unwrap_or(d.n_max_n);
+        let (lo, hi) = if lo > 0.0 && hi > lo && hi.is_finite() {
+            (lo, hi)
+        } else {
+            (d.n_min_n, d.n_max_n)
+        };
+        (self.finger.c, self.finger.gamma) = Finger::fit_brush_contact_law(&brush, lo, hi);
+    }
+
+    /// The `[finger]` keys that depend on `model`: `c` and `gamma` for `fls` (and no
+    /// `[finger.brush]`); for `brush`, the brush's parameters, `c` and `gamma` both given
+    /// or both left to the fit, and no effect that models softgrip's own contact.
+    fn check_model(&self, text: &str) -> Result<(), SceneError> {
+        let at = |table: &str, key: &str| {
+            line_of(text, table, key).map_or(String::new(), |l| format!("line {l}: "))
+        };
+        let f = &self.finger;
+        if f.model == FingerModel::Fls {
+            if f.brush.is_some() {
+                return Err(SceneError(
+                    "finger.brush: only for finger.model = \"brush\"".into(),
+                ));
+            }
+            if !(f.c > 0.0 && f.c.is_finite()) {
+                return Err(SceneError(format!(
+                    "{}finger.c: {} must be a finite number > 0 (required for \
+                     finger.model = \"fls\")",
+                    at("finger", "c"),
+                    short_num(f.c)
+                )));
+            }
+            return Ok(());
+        }
+        if let Err(e) = f.brush_finger() {
+            let key = e.split(": ").next().unwrap_or(&e);
+            let (table, k) = key.rsplit_once('.').unwrap_or(("finger", key));
+            return Err(SceneError(format!("{}{e}", at(table, k))));
+        }
+        if f.c.is_nan() != f.gamma.is_nan() {
+            return Err(SceneError(format!(
+                "{}finger.c, finger.gamma: give both or neither (model = \"brush\" fits \
+                 both to the plant)",
+                at("finger", if f.c.is_nan() { "gamma" } else { "c" })
+            )));
+        }
+        if !(f.c.is_nan() || f.c > 0.0 && f.c.is_finite()) {
+            return Err(SceneError(format!(
+                "{}finger.c: {} must be a finite number > 0",
+                at("finger", "c"),
+                short_num(f.c)
+            )));
+        }
+        for name in &self.effects {
+            if matches!(name.as_str(), "skewed_pressure" | "creep" | "partial_slip") {
+                return Err(SceneError(format!(
+                    "{}effects: \"{name}\" models softgrip's own contact and does not apply \
+                     to finger.model = \"brush\" (the brush plant has its own skew, creep \
+                     and partial slip)",
+                    at("", "effects")
+                )));
+            }
+        }
+        Ok(())
     }
 
     fn check(&self, text: &str) -> Result<(), SceneError> {
@@ -363,7 +448,7 @@ impl Scene {
             }
         }
         positive("finger", "mu", self.finger.mu)?;
-        positive("finger", "c", self.finger.c)?;
+        self.check_model(text)?;
         positive("finger", "half_length_m", self.finger.half_length_m)?;
         positive("finger", "young_modulus_pa", self.finger.young_modulus_pa)?;
         if self.finger.k.is_nan() || self.finger.k < 1.0 {
@@ -373,7 +458,7 @@ impl Scene {
                 format!("{} must be >= 1", short_num(self.finger.k)),
             ));
         }
-        if !(0.0..=0.5).contains(&self.finger.gamma) {
+        if !(0.0..=0.5).contains(&self.finger.gamma) && !self.brush_fits_law() {
             return Err(bad(
                 "finger",
                 "gamma",

@@ -1,0 +1,186 @@
+//! Tangential stick–slip: one bristle per element, a spring of stiffness `k_t·A`
+//! (`k_t = G/h`) from the element's point on the object to its anchor on the finger, with
+//! Coulomb friction. A stuck bristle holds until its force exceeds `μ_s·p·A`; it then
+//! slips: the anchor jumps so that the force is `μ_k·p·A`, along the stretch, and it
+//! keeps sliding at `μ_k·p·A` for as long as the stretch would exceed that; once the
+//! stretch falls back (the motion stops or reverses) it sticks again and needs `μ_s`
+//! once more to break. An unloaded element (`p = 0`) carries no force: its anchor follows
+//! its point. Partial slip (edge elements sliding while the centre sticks), creep (the
+//! slid elements' anchors drifting) and gross slip (every loaded element sliding) come
+//! out of these rules and nothing else.
+//!
+//! An element of the object's surface at `(x, y)` is displaced, for the object's pose
+//! `(u_x, u_y, θ)` relative to the finger, by `(u_x − θ·y, u_y + θ·x)`.
+//!
+//! Accuracy: exact for the rules above at the positions it is given (a return mapping;
+//! the forces follow the displacement history at the resolution it is stepped). Cost:
+//! one pass over the elements per update, one `sqrt` per loaded element.
+
+use super::geometry::Patch;
+
+/// The object's pose relative to the finger.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Pose {
+    /// Translation along the axis [m].
+    pub ux_m: f64,
+    /// Translation across the axis [m].
+    pub uy_m: f64,
+    /// Rotation about the contact normal [rad].
+    pub theta_rad: f64,
+}
+
+/// What the bristles transmit to the object (one contact).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BristleWrench {
+    /// Tangential force on the object [N]: `(x, y)`.
+    pub f_t_n: [f64; 2],
+    /// Moment on the object about the contact normal at the patch centre [N·m].
+    pub m_n_nm: f64,
+    /// Loaded elements (`p > 0`).
+    pub loaded: usize,
+    /// Loaded elements that stuck in the last update.
+    pub stuck: usize,
+    /// Stiffness of the loaded bristles `Σ k_t A` [N/m].
+    pub stiffness_n_per_m: f64,
+    /// Torsional stiffness of the loaded bristles `Σ k_t A r²` [N·m/rad].
+    pub torsion_nm_per_rad: f64,
+    /// Stiffness of the stuck bristles [N/m].
+    pub stuck_stiffness_n_per_m: f64,
+    /// Torsional stiffness of the stuck bristles [N·m/rad].
+    pub stuck_torsion_nm_per_rad: f64,
+    /// First moments of the stuck bristles' stiffness `(Σ k_t A x, Σ k_t A y)` [N].
+    pub stuck_moment_n: [f64; 2],
+    /// Elastic energy stored in the bristles [J].
+    pub energy_j: f64,
+    /// The consistent tangent stiffness `K` (`dW ≈ −K·dq` for a pose change `dq`, from the
+    /// same committed anchors), upper triangle `[K11, K12, K13, K22, K23, K33]`: stuck
+    /// bristles `k_t A·BᵀB`, sliding ones `k_t A·(s_k/|s|)·Bᵀ(I − ŝŝᵀ)B` (their force turns
+    /// with the stretch); filled only by [`Bristles::update`] with `tangent`.
+    pub tangent: [f64; 6],
+}
+
+/// The bristles' state: each element's anchor and whether it slid in the last update.
+#[derive(Debug, Clone)]
+pub struct Bristles {
+    /// Stiffness per unit area `k_t` [N/m³].
+    pub k_pa_per_m: f64,
+    anchor_x_m: Vec<f64>,
+    anchor_y_m: Vec<f64>,
+    sliding: Vec<bool>,
+}
+
+impl Bristles {
+    /// Fresh bristles (no stretch anywhere) for `n` elements.
+    pub fn new(n: usize, k_pa_per_m: f64) -> Self {
+        Self {
+            k_pa_per_m,
+            anchor_x_m: vec![0.0; n],
+            anchor_y_m: vec![0.0; n],
+            sliding: vec![false; n],
+        }
+    }
+
+    /// Resets every bristle to zero stretch at pose `q`.
+    pub fn relax(&mut self, patch: &Patch, q: Pose) {
+        for i in 0..patch.len() {
+            self.anchor_x_m[i] = q.ux_m - q.theta_rad * patch.y_m[i];
+            self.anchor_y_m[i] = q.uy_m + q.theta_rad * patch.x_m[i];
+            self.sliding[i] = false;
+        }
+    }
+
+    /// `(loaded, sliding)`: the elements with `p > 0` and those of them that slid in the
+    /// last update.
+    pub fn counts(&self, pressure_pa: &[f64]) -> (usize, usize) {
+        let mut out = (0, 0);
+        for (p, s) in pressure_pa.iter().zip(&self.sliding) {
+            if *p > 0.0 {
+                out.0 += 1;
+                out.1 += usize::from(*s);
+            }
+        }
+        out
+    }
+
+    /// Moves the object to `q` under the pressures `pressure_pa`, applies the stick–slip
+    /// rules and returns the wrench on the object.
+    /// With `tangent`, also sums the consistent tangent stiffness
+    /// ([`BristleWrench::tangent`]).
+    pub fn update(
+        &mut self,
+        patch: &Patch,
+        pressure_pa: &[f64],
+        q: Pose,
+        tangent: bool,
+    ) -> BristleWrench {
+        let ka = self.k_pa_per_m * patch.area_m2;
+        let mut w = BristleWrench::default();
+        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+            let (x, y) = (patch.x_m[i], patch.y_m[i]);
+            let dx = q.ux_m - q.theta_rad * y;
+            let dy = q.uy_m + q.theta_rad * x;
+            if p <= 0.0 {
+                self.anchor_x_m[i] = dx;
+                self.anchor_y_m[i] = dy;
+                self.sliding[i] = false;
+                continue;
+            }
+            let (mut sx, mut sy) = (dx - self.anchor_x_m[i], dy - self.anchor_y_m[i]);
+            let stretch = sx.hypot(sy);
+            let mu = if self.sliding[i] {
+                patch.mu_kinetic[i]
+            } else {
+                patch.mu_static[i]
+            };
+            let limit = mu * p / self.k_pa_per_m;
+            let slides = stretch > limit;
+            if slides {
+                let keep = patch.mu_kinetic[i] * p / self.k_pa_per_m / stretch;
+                if tangent {
+                    let (ex, ey) = (sx / stretch, sy / stretch);
+                    let m = [
+                        keep * (1.0 - ex * ex),
+                        -keep * ex * ey,
+                        keep * (1.0 - ey * ey),
+                    ];
+                    add_tangent(&mut w.tangent, ka, m, x, y);
+                }
+                sx *= keep;
+                sy *= keep;
+                self.anchor_x_m[i] = dx - sx;
+                self.anchor_y_m[i] = dy - sy;
+            } else if tangent {
+                add_tangent(&mut w.tangent, ka, [1.0, 0.0, 1.0], x, y);
+            }
+            self.sliding[i] = slides;
+            let (fx, fy) = (-ka * sx, -ka * sy);
+            let r2 = x * x + y * y;
+            w.f_t_n[0] += fx;
+            w.f_t_n[1] += fy;
+            w.m_n_nm += x * fy - y * fx;
+            w.loaded += 1;
+            w.stiffness_n_per_m += ka;
+            w.torsion_nm_per_rad += ka * r2;
+            if !slides {
+                w.stuck += 1;
+                w.stuck_stiffness_n_per_m += ka;
+                w.stuck_torsion_nm_per_rad += ka * r2;
+                w.stuck_moment_n[0] += ka * x;
+                w.stuck_moment_n[1] += ka * y;
+            }
+            w.energy_j += 0.5 * ka * (sx * sx + sy * sy);
+        }
+        w
+    }
+}
+
+/// Adds `ka·BᵀPB` to the tangent's upper triangle, `P = [[a, b], [b, d]]` given as
+/// `[a, b, d]`, `B = [[1, 0, −y], [0, 1, x]]`.
+fn add_tangent(t: &mut [f64; 6], ka: f64, [a, b, d]: [f64; 3], x: f64, y: f64) {
+    t[0] += ka * a;
+    t[1] += ka * b;
+    t[2] += ka * (x * b - y * a);
+    t[3] += ka * d;
+    t[4] += ka * (x * d - y * b);
+    t[5] += ka * (y * y * a - 2.0 * x * y * b + x * x * d);
+}

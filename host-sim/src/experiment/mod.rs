@@ -5,8 +5,11 @@
 //! - [`Rig`]: the two measurements a plant answers: the contact half-width under a normal
 //!   force, and the onset of gross slip along a ramp of load;
 //! - [`fls_rig`]: the plant whose contact is softgrip's exact limit surface;
+//! - [`brush_rig`]: the physical brush finger ([`crate::brush`]), which softgrip does not
+//!   model;
 //! - [`protocol`]: indentation, slip, torsion and combined ramps, and the noise.
 
+pub mod brush_rig;
 pub mod fls_rig;
 pub mod protocol;
 

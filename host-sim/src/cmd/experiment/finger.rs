@@ -3,6 +3,7 @@
 //! simulator reads them) or from the flags.
 
 use super::FingerArgs;
+use crate::brush::BrushFinger;
 use crate::experiment::FingerSpec;
 use crate::input::{read_capped_text, FINGER_CAP_BYTES};
 use crate::sim::effects::skewed_pressure::{SkewedPressure, SkewedPressureSettings};
@@ -22,6 +23,26 @@ struct FingerFile {
     effects: Vec<String>,
     #[serde(default)]
     effect: BTreeMap<String, toml::Table>,
+}
+
+/// The brush finger of `--finger` (a scene or finger file whose `[finger]` has
+/// `model = "brush"`).
+pub fn brush(args: &FingerArgs) -> Result<BrushFinger, CliError> {
+    let Some(path) = &args.finger else {
+        return Err(CliError::Usage(
+            "--plant brush needs --finger FILE: a scene or finger file with \
+             [finger] model = \"brush\" (e.g. host-sim/scenes/brush_lift_hold.toml)"
+                .into(),
+        ));
+    };
+    let usage = |m: String| CliError::Usage(format!("--finger: {}: {m}", path.display()));
+    let text = read_capped_text(path, "--finger", FINGER_CAP_BYTES)
+        .map_err(|e| CliError::Usage(e.to_string()))?;
+    let f: FingerFile = toml::from_str(&text).map_err(|e| usage(e.message().trim().to_string()))?;
+    f.finger
+        .brush_finger()
+        .map_err(usage)?
+        .ok_or_else(|| usage("--plant brush: [finger] has no model = \"brush\"".into()))
 }
 
 fn from_file(path: &Path) -> Result<FingerSpec, CliError> {

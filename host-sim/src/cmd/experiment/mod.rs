@@ -35,6 +35,9 @@ pub enum Kind {
 pub enum Plant {
     /// The exact limit surface of softgrip's core with a = c·N^γ.
     Fls,
+    /// The physical brush finger (elastic foundation, stick-slip bristles; docs/
+    /// brush-finger.md): needs --finger with a scene whose [finger] has model = "brush".
+    Brush,
 }
 
 /// The finger as flags (when no `--finger` file is given).
@@ -172,6 +175,7 @@ pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
         Plant::Fls => {
             Box::new(FlsRig::new(spec, lo, hi).map_err(|e| usage(format!("finger: {e}")))?)
         }
+        Plant::Brush => Box::new(finger::brush(&args.finger)?),
     };
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;

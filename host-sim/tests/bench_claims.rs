@@ -316,9 +316,26 @@ fn render_claims(b: &Bench) -> String {
             ours.force_over_oracle,
         );
     }
-    s.push_str(".\n");
-    s.push_str(CLAIMS.1);
-    s
+    s.push('.');
+    let (marker, paragraph) = s.split_once('\n').expect("marker line");
+    format!("{marker}\n{}\n{}", wrap(paragraph, 90), CLAIMS.1)
+}
+
+/// `text` broken at spaces into lines of at most `width` characters.
+fn wrap(text: &str, width: usize) -> String {
+    let mut lines: Vec<String> = vec![String::new()];
+    for word in text.split(' ') {
+        let line = lines.last_mut().expect("a line");
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            lines.push(word.to_string());
+        } else {
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+    }
+    lines.join("\n")
 }
 
 /// The results of docs/bench.md: the table per family and the split by slip sensor.

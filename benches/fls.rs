@@ -5,6 +5,8 @@
 //!
 //! Run with `cargo bench --bench fls` (about a minute on two cores).
 
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -43,6 +45,7 @@ fn sweep_128(c: &mut Criterion) {
     // The skewed disc (a 2-D integral per point, ~0.5 ms) is left out: it is measured by
     // `point` below, and 128 of it would dominate the run.
     for (name, m) in cases().into_iter().take(3) {
+        common::id(&format!("sweep_128/{name}"));
         group.bench_function(name, |b| {
             b.iter(|| FlsTable::<f64, 130>::sweep(black_box(&m), black_box(128)).expect("fits"))
         });
@@ -57,6 +60,7 @@ fn point(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     for (name, m) in cases() {
+        common::id(&format!("point/{name}"));
         group.bench_function(name, |b| b.iter(|| black_box(&m).point(black_box(0.7))));
     }
     group.finish();
@@ -79,7 +83,9 @@ fn brute_force_point(c: &mut Criterion) {
     // "~1e-6" point for the speed ratio; cells = 32 (196 608 evaluations): 1e-10, the fast
     // path's own accuracy.
     for cells in [6, 32] {
-        group.bench_function(format!("rect_k2_d0.7_cells{cells}"), |b| {
+        let name = format!("rect_k2_d0.7_cells{cells}");
+        common::id(&format!("brute_force_point/{name}"));
+        group.bench_function(name, |b| {
             b.iter(|| case.point(black_box(0.7), black_box(cells)))
         });
     }

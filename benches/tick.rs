@@ -7,6 +7,8 @@
 //! load that jumps. The `tick_smooth_*` benchmarks follow a load that turns once a second
 //! at 1 kHz, as in a grip loop, where the previous tick's grid interval is a good hint.
 
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -41,7 +43,7 @@ fn bench_tick<T: Real, M: TickMath<T>>(c: &mut Criterion, name: &str, mode: Mode
     let mut meas = loads::<T>();
     let mut t = 0u64;
     let mut i = 0usize;
-    c.bench_function(name, |b| {
+    c.bench_function(common::id(name), |b| {
         b.iter(|| {
             i = (i + 1) % meas.len();
             t += 1000;
@@ -73,7 +75,7 @@ fn bench_smooth_tick(c: &mut Criterion, name: &str, mode: Mode) {
         })
         .collect();
     let mut k = 0u64;
-    c.bench_function(name, |b| {
+    c.bench_function(common::id(name), |b| {
         b.iter(|| {
             k += 1;
             let mut m = cycle[(k % 1000) as usize];
@@ -101,10 +103,10 @@ fn startup(c: &mut Criterion) {
             ..ControllerConfig::default()
         };
         let n = mode.name();
-        c.bench_function(&format!("startup_{n}_f32"), |b| {
+        c.bench_function(common::id(&format!("startup_{n}_f32")), |b| {
             b.iter(|| black_box(Controller::<f32>::new(black_box(cfg)).expect("valid")))
         });
-        c.bench_function(&format!("startup_{n}_f64"), |b| {
+        c.bench_function(common::id(&format!("startup_{n}_f64")), |b| {
             b.iter(|| black_box(Controller::<f64>::new(black_box(cfg)).expect("valid")))
         });
     }

@@ -14,7 +14,7 @@
 #
 # Exit status: 0 when every wrapper that must be proven is (all but KNOWN: the tick, the
 # rule, Controller::new, the frame decoder, the encoder, blob parsing), 1 otherwise.
-# Wrappers in KNOWN are expected to fail today (see the README section "No panic on the
+# Wrappers in KNOWN are expected to fail today (see docs/testing.md, "No panic on the
 # paths that face the world"): they are reported, and a KNOWN wrapper that starts passing
 # is pointed out so it can be promoted.
 #

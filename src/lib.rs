@@ -32,3 +32,13 @@ pub use error::ConfigError;
 pub use fls::{FlsConfig, FlsModel, FlsPoint, FlsTable, Shape};
 pub use quadrature::QuadratureOrder;
 pub use real::Real;
+
+/// The Rust examples of docs/core.md, run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/core.md")]
+pub struct CoreDocs;
+
+/// The Rust examples of docs/controller.md, run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/controller.md")]
+pub struct ControllerDocs;

@@ -247,7 +247,7 @@ fn table_mode_with_a_surface_that_is_not_star_shaped_is_refused_naming_the_locus
     let err = Controller::<f64>::new(cfg).unwrap_err();
     assert_eq!(err.param(), "locus", "{err}");
     // At the default 48 samples the fold falls between samples; the stored polygon is
-    // star-shaped and accepted (the README states the resolution limit).
+    // star-shaped and accepted (docs/robustness.md states the resolution limit).
     assert!(Controller::<f64>::new(ControllerConfig {
         table_samples: 48,
         ..cfg

@@ -224,7 +224,7 @@ proptest! {
         // mid sweep), but the direction turns monotonically, which the table lookup needs.
         // The disc is taken with the peak moving along y only (locus 0): a sideways locus
         // moves the pressure centroid off the x = 0 line, and then the moment about the patch
-        // centre can pass through zero (see the README), which is not star-shaped.
+        // centre can pass through zero (see docs/core.md), which is not star-shaped.
         let (shape, locus) = if disc { (Shape::Disc, 0.0) } else { (Shape::Rect { aspect }, delta / 2.0) };
         let m = model(shape, k, Some((delta, alpha, locus)));
         let table = FlsTable::<f64, 40>::sweep(&m, 32).unwrap();

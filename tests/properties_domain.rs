@@ -35,7 +35,7 @@ use stress_cases::*;
 /// `(f̃, m̃)`, over `l/a ∈ [1e-3, 0.5)` and all `k` (`RadialGap::max_outside`). Measured with
 /// 256-sample sweeps: 0 for `l/a ≥ 0.45`; 0.0055 (k = 1) to 0.0133 (uniform) at 0.3; 0.042
 /// (k = 1) at 0.05; 0.0450 (k = 1), 0.0387 (k = 2), 0.0359 (uniform) at 1e-3, the thin-strip
-/// limit. The README's "up to 0.04 at l/a = 0.05" is the k = 2 figure.
+/// limit. docs/core.md's "up to 0.04 at l/a = 0.05" is the k = 2 figure.
 const THIN_OUTSIDE: f64 = 0.046;
 
 /// The largest radial gap between the exact surface and the Eq. 10 ellipse in the
@@ -43,7 +43,7 @@ const THIN_OUTSIDE: f64 = 0.046;
 /// inside it the exact surface lies, which is why ellipse mode now tests against an
 /// inscribed ellipse instead): measured over 1024-sample sweeps, 0.1340 for long
 /// rectangles (every `k`; l/a = 1: 0.0706 at k = 2), 0.051 (k = 1) to 0.066 (uniform) on the
-/// disc. The README quotes the gap in `(f̃, m̃)` (12.2 % for long patches), which is smaller
+/// disc. docs/controller.md quotes the gap in `(f̃, m̃)` (12.2 % for long patches), which is smaller
 /// where the pitch is far from 1.
 const GAP_NORMALISED: f64 = 0.1341;
 

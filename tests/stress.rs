@@ -9,7 +9,7 @@
 //! in the partial-slip formulas; zero loads, and loads no force up to `N_max` can hold.
 //!
 //! `cargo test --release --test stress -- --nocapture` prints the worst deviation of each
-//! table; the README quotes them.
+//! table; docs/robustness.md quotes them.
 
 #[path = "common/stress_cases.rs"]
 mod stress_cases;

@@ -651,7 +651,7 @@ fn build_all(text: &str) -> Result<(), String> {
 
 /// Mutated scene files (the seven shipped scenes, 300 edits each, up to three edits
 /// stacked) and random text: no panic anywhere in parsing and building, and every
-/// error is a single line (the README: "one line naming the key and its line").
+/// error is a single line (docs/simulate.md: "one line naming the key and its line").
 #[test]
 fn mutated_and_random_scene_files_never_panic_and_errors_are_one_line() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -712,7 +712,7 @@ fn mutated_and_random_scene_files_never_panic_and_errors_are_one_line() {
 
 /// Found by this suite (see the report): `simulate` checks a scene's effect settings and
 /// controller settings only once the run starts, and reports them as a run failure, exit
-/// code 1, though the README promises code 2 for a bad scene file (the message itself is
+/// code 1, though docs/simulate.md promises code 2 for a bad scene file (the message itself is
 /// the promised one line naming the key and its line). Run with `--ignored`.
 #[test]
 fn simulate_refuses_bad_settings_with_code_2() {

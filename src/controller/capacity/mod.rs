@@ -57,8 +57,8 @@ pub const MAX_TABLE_SAMPLES: usize = 128;
 pub const MAX_ILLINOIS_ITERATIONS: u8 = 16;
 /// Most iterations of the Illinois step in one solve in f32, the firmware's precision. Its
 /// 8-ulp tolerance is met in at most 5 over the same loads (the test fails above 5), so
-/// the cap is one above that; it bounds the worst tick, which the README's cost table
-/// measures with every solve run to this cap (the `solve-to-cap` feature). A solve that
+/// the cap is one above that; it bounds the worst tick, which the cost table of
+/// docs/firmware-costs.md measures with every solve run to this cap (the `solve-to-cap` feature). A solve that
 /// reaches a cap returns the upper end of its bracket, where the load holds: more force
 /// than the tolerance would give, never less. On the default grid no solve reaches it; on
 /// a grid 5.6 times coarser in `ln N` (64 nodes over 1e-9 to 1e6 N) 39 % do, asking at most

@@ -94,7 +94,7 @@ fn order(c: &Ctx) -> Option<String> {
             "the numbers would allow order {} for the f32 firmware ({} less start-up in \
              table mode); 28 stays the default because the same core serves f64 on the \
              host, where order 28 is what keeps a point within 5e-11 of the converged \
-             integral (README), and because the start-up runs once",
+             integral (docs/core.md), and because the start-up runs once",
             vo.order,
             pct(1.0 - mo.precompute_us / mt.precompute_us.max(1e-9))
         )

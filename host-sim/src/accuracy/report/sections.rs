@@ -49,7 +49,7 @@ pub(super) fn target_section(out: &mut String, results: &Results) {
                  `cargo run --release -p host-sim -- accuracy --target` (adds the target's \
                  start-up and tick instructions to every table). The default firmware's own \
                  costs, over the worst-case trace of `host-sim/tests/firmware_costs.rs`, are the \
-                 README's generated firmware cost table.\n"
+                 generated cost table of docs/firmware-costs.md.\n"
             );
         }
     }

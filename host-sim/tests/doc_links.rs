@@ -1,0 +1,138 @@
+//! The README and docs/ hold together: every relative link of README.md and docs/*.md
+//! names a file that exists (links in docs/ are relative to docs/), the README's index
+//! lists every docs page, and the README stays a front door of at most 250 lines.
+
+use std::path::{Path, PathBuf};
+
+/// Pages the README's index lists that are being written on other branches; a link to
+/// one of them may dangle until it lands (then this list can lose it).
+const PENDING: [&str; 4] = [
+    "docs/first-run.md",
+    "docs/calibration.md",
+    "docs/experiments.md",
+    "docs/brush-finger.md",
+];
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn pages() -> Vec<PathBuf> {
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .expect("docs/")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    pages.sort();
+    pages
+}
+
+/// The targets of the markdown links and images of `text`, `[text](target)`, outside code
+/// blocks.
+fn links(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut in_code = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            in_code = !in_code;
+            continue;
+        }
+        if in_code {
+            continue;
+        }
+        let mut rest = line;
+        while let Some(i) = rest.find("](") {
+            let after = &rest[i + 2..];
+            let Some(end) = after.find(')') else { break };
+            out.push(after[..end].to_string());
+            rest = &after[end..];
+        }
+    }
+    out
+}
+
+/// The path, relative to the repository root, of `target` linked from `page`.
+fn resolve(page: &Path, target: &str) -> Option<PathBuf> {
+    if target.contains("://") || target.starts_with('#') || target.starts_with("mailto:") {
+        return None;
+    }
+    let file = target.split('#').next().unwrap_or_default();
+    let dir = page.parent().unwrap_or(Path::new(""));
+    let mut parts: Vec<String> = Vec::new();
+    for c in dir.join(file).components() {
+        match c {
+            std::path::Component::ParentDir => {
+                parts.pop();
+            }
+            std::path::Component::Normal(s) => parts.push(s.to_string_lossy().into_owned()),
+            _ => {}
+        }
+    }
+    Some(PathBuf::from(parts.join("/")))
+}
+
+#[test]
+fn every_relative_link_names_a_file_that_exists() {
+    let mut files = vec![PathBuf::from("README.md")];
+    files.extend(pages().iter().map(|p| {
+        p.strip_prefix(root())
+            .expect("under the root")
+            .to_path_buf()
+    }));
+    let mut broken = Vec::new();
+    let mut checked = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(root().join(file)).expect("readable");
+        for target in links(&text) {
+            let Some(path) = resolve(file, &target) else {
+                continue;
+            };
+            checked += 1;
+            let name = path.to_string_lossy().into_owned();
+            if !root().join(&path).exists() && !PENDING.contains(&name.as_str()) {
+                broken.push(format!("{}: ({target}) -> {name}", file.display()));
+            }
+        }
+    }
+    assert!(
+        checked > 30,
+        "only {checked} links found: is the parser right?"
+    );
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+#[test]
+fn the_readme_indexes_every_docs_page() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let linked: Vec<String> = links(&readme);
+    for page in pages() {
+        let name = format!(
+            "docs/{}",
+            page.file_name().unwrap().to_string_lossy().into_owned()
+        );
+        assert!(
+            linked.contains(&name),
+            "README.md's index does not list {name}"
+        );
+    }
+    for name in PENDING {
+        assert!(linked.iter().any(|l| l == name), "README.md: {name}");
+    }
+}
+
+#[test]
+fn the_readme_is_a_front_door() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let lines = readme.lines().count();
+    assert!(
+        lines <= 250,
+        "README.md has {lines} lines; the limit is 250"
+    );
+    for needed in [
+        "cargo run --release -p host-sim -- simulate host-sim/scenes/lift_hold.toml\n",
+        "bash scripts/test.sh\n",
+        "<!-- first-run: measured in docs/first-run.md -->\n",
+    ] {
+        assert!(readme.contains(needed), "README.md lacks {needed:?}");
+    }
+}

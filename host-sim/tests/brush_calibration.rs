@@ -200,3 +200,54 @@ fn hemisphere() {
         0.01,
     );
 }
+
+/// The shipped brush scene's controller believes its finger's calibration, not the
+/// plant's parameters: its `k`, `c`, `gamma` and `[controller] mu` are what `experiment`
+/// and `calibrate` give on that finger's lab data (the commands in the scene's comment).
+#[test]
+fn the_brush_scene_believes_its_calibration() {
+    let bin = env!("CARGO_BIN_EXE_host-sim");
+    let scene =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/brush_lift_hold.toml");
+    let lab = std::env::temp_dir().join(format!("softgrip-brush-lab-{}", std::process::id()));
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(bin).args(args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let (scene_s, lab_s) = (scene.to_str().unwrap(), lab.to_str().unwrap());
+    run(&[
+        "experiment",
+        "all",
+        "--plant",
+        "brush",
+        "--finger",
+        scene_s,
+        "--noise",
+        "0.02",
+        "--seed",
+        "1",
+        "--out",
+        lab_s,
+    ]);
+    let ind = lab.join("indentation.csv");
+    let slip = lab.join("slip.csv");
+    let json = run(&[
+        "calibrate",
+        "--indentation",
+        ind.to_str().unwrap(),
+        "--slip",
+        slip.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let cal: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let doc: toml::Table = toml::from_str(&std::fs::read_to_string(&scene).unwrap()).unwrap();
+    let value = |v: &serde_json::Value| v["value"].as_f64().unwrap();
+    let key = |t: &str, k: &str| doc[t][k].as_float().unwrap();
+    assert_eq!(key("finger", "k"), value(&cal["k"]));
+    assert_eq!(key("finger", "c"), value(&cal["c"]));
+    assert_eq!(key("finger", "gamma"), value(&cal["gamma"]));
+    assert_eq!(key("controller", "mu"), value(&cal["mu"]));
+    let _ = std::fs::remove_dir_all(&lab);
+}

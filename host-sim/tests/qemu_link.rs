@@ -172,19 +172,11 @@ fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
     if available().is_none() {
         return;
     }
-    let scene = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/lift_hold.toml");
     let base = std::env::temp_dir().join(format!("softgrip-qemu-sim-{}", std::process::id()));
-    let run = |link: &str| {
-        let out = base.join(link);
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
-            .args(["simulate", scene.to_str().unwrap(), "--link", link, "--out"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        out
-    };
-    let (q, i) = (run("qemu"), run("inprocess"));
+    let (q, i) = (
+        simulate("lift_hold", "qemu", &base),
+        simulate("lift_hold", "inprocess", &base),
+    );
     let series = |d: &std::path::Path| {
         std::fs::read_to_string(d.join("timeseries_lift_hold_softgrip.csv")).unwrap()
     };
@@ -199,6 +191,53 @@ fn a_scene_over_qemu_equals_the_in_process_link_and_reports_the_target() {
     }
     assert!(t["flash_bytes"].as_u64().unwrap() > 10_000);
     assert!(t["stack_peak_bytes"].as_f64().unwrap() > 1_000.0);
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// Runs the shipped scene `name` on `link` into a folder of `base`, returns the folder.
+fn simulate(name: &str, link: &str, base: &std::path::Path) -> std::path::PathBuf {
+    let scene =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
+    let out = base.join(format!("{name}-{link}"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["simulate", scene.to_str().unwrap(), "--link", link, "--out"])
+        .arg(&out)
+        .args(["--controller", "softgrip,softgrip-table"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    out
+}
+
+/// The brush finger (a plant softgrip does not model) with softgrip calibrated from its
+/// lab data (`scenes/brush_lift_hold.toml`): the firmware in QEMU gives the in-process
+/// link's time series bit for bit, in both modes, and holds the object.
+#[test]
+#[cfg_attr(
+    no_qemu,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default"
+)]
+fn the_brush_scene_over_qemu_equals_the_in_process_link() {
+    if available().is_none() {
+        return;
+    }
+    let base = std::env::temp_dir().join(format!("softgrip-qemu-brush-{}", std::process::id()));
+    let (q, i) = (
+        simulate("brush_lift_hold", "qemu", &base),
+        simulate("brush_lift_hold", "inprocess", &base),
+    );
+    for c in ["softgrip", "softgrip-table"] {
+        let name = format!("timeseries_brush_lift_hold_{c}.csv");
+        let read = |d: &std::path::Path| std::fs::read_to_string(d.join(&name)).unwrap();
+        assert_eq!(read(&q), read(&i), "{name}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(q.join("summary.json")).unwrap()).unwrap();
+    let runs = v["runs"].as_array().expect("summary.json has runs");
+    assert_eq!(runs.len(), 2);
+    for r in runs {
+        assert_eq!(r["dropped"], serde_json::Value::Bool(false), "{r}");
+    }
     let _ = std::fs::remove_dir_all(&base);
 }
 

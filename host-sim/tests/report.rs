@@ -525,3 +525,23 @@ fn comparison_table_is_quiet_when_softgrip_wins_everywhere() {
     ];
     assert!(comparison_table(&tie).contains("the baseline does as well here"));
 }
+
+/// A run that lost its object without a slip event (the brush finger's creep can turn it
+/// out of the grasp while its centre still sticks) did not hold it: the comparison counts
+/// it as the verdict does.
+#[test]
+fn comparison_table_does_not_count_a_drop_without_slip_events_as_held() {
+    let dropped = RunSummary {
+        dropped: true,
+        ..run("brush", "coulomb", 0, 1.0, false)
+    };
+    let runs = [run("brush", "softgrip", 0, 2.0, false), dropped];
+    let table = comparison_table(&runs);
+    assert!(
+        table.contains("scene brush: held by softgrip; least mean force: softgrip (2.000 N)"),
+        "{table}"
+    );
+    assert!(!table.contains("baseline"), "{table}");
+    let row = table.lines().find(|l| l.starts_with("coulomb")).unwrap();
+    assert_eq!(row.split_whitespace().nth(1), Some("0/1"), "{table}");
+}

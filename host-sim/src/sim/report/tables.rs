@@ -119,8 +119,10 @@ pub(super) fn is_softgrip(controller: &str) -> bool {
     controller.starts_with("softgrip")
 }
 
+/// Whether a run held its object: no slip event and not dropped (the verdict's rule,
+/// [`verdict`]).
 pub(super) fn held(r: &RunSummary) -> bool {
-    r.slip_events == 0
+    r.slip_events == 0 && !r.dropped
 }
 
 /// A comparison of the controllers over all scenes (for `simulate --controller all`).

@@ -183,13 +183,19 @@ def load_finger(path: Union[str, PathLike]) -> dict[str, Any]:
     ``Controller`` keywords: ``shape`` ("rect": a hemicylinder, "disc": a hemisphere),
     ``k``, ``mu``, ``c_m_per_n_gamma`` (the file's ``c``), ``gamma``, ``half_length_m``
     and, when the file describes a skewed pressure (``[effect.skewed_pressure]``),
-    ``skew``. ``Controller(**load_finger("finger.toml"), safety=1.3)`` runs it."""
+    ``skew``. A scene's ``[controller] mu``, the μ its controller believes, wins over the
+    finger's. ``Controller(**load_finger("finger.toml"), safety=1.3)`` runs it."""
     with open(path, "rb") as f:
         doc = tomllib.load(f)
     if "finger" not in doc:
         raise ConfigError(f"{path}: no [finger] table")
     skew = doc.get("effect", {}).get("skewed_pressure")
-    return _finger_kwargs(doc["finger"], skew)
+    out = _finger_kwargs(doc["finger"], skew)
+    # A scene's controller may believe another μ than its finger's true one.
+    believed = doc.get("controller", {}).get("mu")
+    if believed is not None:
+        out["mu"] = float(believed)
+    return out
 
 
 def calibrate(

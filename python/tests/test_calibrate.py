@@ -65,3 +65,13 @@ def test_too_few_rows_state_the_minimum(lab, tmp_path):
         softgrip.calibrate(few, lab / "slip.csv")
     assert e.value.param == "indentation"
     assert "at least" in str(e.value)
+
+
+def test_load_finger_reads_a_scene_with_the_believed_mu():
+    import pathlib
+
+    scene = pathlib.Path(__file__).resolve().parents[2] / "host-sim/scenes/brush_lift_hold.toml"
+    f = softgrip.load_finger(scene)
+    assert f["mu"] != 0.8  # the brush's true static μ is not what softgrip believes
+    assert f["shape"] == "rect" and f["k"] == 1.0
+    softgrip.Controller(**f)

@@ -53,7 +53,7 @@ const N_N: [f32; 6] = [3.0, 0.05, 19.5, 30.0, 1.0, 8.0];
 
 /// The far load that precedes each hard one: alternately nothing and a large load.
 fn far(k: usize) -> ([f32; 2], f32) {
-    if k % 2 == 0 {
+    if k.is_multiple_of(2) {
         ([0.0, 0.0], 0.0)
     } else {
         ([30.0, 0.0], 0.04)
@@ -241,7 +241,7 @@ fn grouped(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push(' ');
         }
         out.push(c);

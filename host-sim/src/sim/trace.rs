@@ -55,7 +55,7 @@ impl PlotTrace {
 
     /// Records the next tick's sample.
     pub fn push(&mut self, s: &Sample) {
-        if self.seen % self.stride == 0 {
+        if self.seen.is_multiple_of(self.stride) {
             if self.samples.len() == MAX_TRACE_SAMPLES {
                 // Keep the ticks that are multiples of twice the stride.
                 let mut i = 0;
@@ -65,7 +65,7 @@ impl PlotTrace {
                 });
                 self.stride *= 2;
             }
-            if self.seen % self.stride == 0 {
+            if self.seen.is_multiple_of(self.stride) {
                 self.samples.push(*s);
             }
         }
@@ -111,7 +111,7 @@ impl PlotTrace {
     pub fn samples(&self) -> Vec<Sample> {
         let mut out = self.samples.clone();
         if let Some(last) = self.last {
-            if (self.seen - 1) % self.stride != 0 {
+            if !(self.seen - 1).is_multiple_of(self.stride) {
                 out.push(last);
             }
         }

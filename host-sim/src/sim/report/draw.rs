@@ -28,7 +28,7 @@ pub(super) fn stride<T: Copy>(v: &[T], max: usize) -> Vec<T> {
     }
     let k = v.len().div_ceil(max - 1);
     let mut out: Vec<T> = v.iter().step_by(k).copied().collect();
-    if (v.len() - 1) % k != 0 {
+    if !(v.len() - 1).is_multiple_of(k) {
         out.push(v[v.len() - 1]);
     }
     out

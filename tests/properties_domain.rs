@@ -295,7 +295,10 @@ fn stream<T: Real, M: TickMath<T>>(
                 0 => T::of((b % 10_000) as f64 / 10_000.0 * scale),
                 1 => T::of(f64::from_bits(b)),
                 2 => T::of(f64::from(f32::from_bits(b as u32))),
-                _ => T::of(if b.is_multiple_of(2) { scale } else { -scale } * (1.0 + (b % 3) as f64 * 1e-7)),
+                _ => T::of(
+                    if b.is_multiple_of(2) { scale } else { -scale }
+                        * (1.0 + (b % 3) as f64 * 1e-7),
+                ),
             }
         };
         t = t

@@ -14,6 +14,8 @@
 //! - [`sim`]: scenes, effects, ground truth, baselines, runs and their reports.
 //! - [`plot`]: limit-surface plots (`fls --plot`, `tables`).
 //! - [`progress`]: the progress bar of the long commands, on stderr.
+//! - [`finger_file`]: a finger TOML (`calibrate --out`'s, or a scene), as `--finger`
+//!   reads it in `required-force`, `simulate`, `tables` and `experiment`.
 //! - [`input`]: bounded reading of every file the user names, and the value shortening
 //!   of error messages.
 //! - [`link`]: the plant's side of the serial link to the device running the controller;
@@ -27,6 +29,7 @@ pub mod bench;
 pub mod brush;
 pub mod cmd;
 pub mod experiment;
+pub mod finger_file;
 pub mod input;
 pub mod link;
 pub mod plot;

@@ -50,15 +50,20 @@ pub struct RequiredForceArgs {
     /// Torsional moment |m_n| [N·m] (the sign is ignored).
     #[arg(long)]
     mn: f64,
+    /// A finger file (`host-sim calibrate --out`'s, or a scene): its shape, k, mu (a
+    /// scene's [controller] mu if set), c, gamma and half_length_m, in place of the
+    /// flags --shape, --k, --mu, --c, --gamma and --length.
+    #[arg(long, conflicts_with_all = ["mu", "c", "gamma", "length", "shape", "k"])]
+    finger: Option<std::path::PathBuf>,
     /// Friction coefficient μ > 0.
-    #[arg(long)]
-    mu: f64,
+    #[arg(long, required_unless_present = "finger")]
+    mu: Option<f64>,
     /// Contact-size coefficient c in a = c·N^γ [m/N^γ].
-    #[arg(long)]
-    c: f64,
+    #[arg(long, required_unless_present = "finger")]
+    c: Option<f64>,
     /// Contact-size exponent γ in [0, 1/2].
-    #[arg(long)]
-    gamma: f64,
+    #[arg(long, required_unless_present = "finger")]
+    gamma: Option<f64>,
     /// Shape, pressure exponent, skew (only table mode sees the skew).
     #[command(flatten)]
     patch: PatchArgs,
@@ -87,6 +92,73 @@ pub struct RequiredForceArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = OutFormat::Table)]
     format: OutFormat,
+}
+
+/// The arguments with the finger resolved: from `--finger`'s file or from the flags.
+#[derive(Debug)]
+struct Resolved<'a> {
+    ft: f64,
+    mn: f64,
+    mu: f64,
+    c: f64,
+    gamma: f64,
+    patch: PatchArgs,
+    length: f64,
+    safety: f64,
+    mode: ModeArg,
+    n_min: f64,
+    n_max: f64,
+    precision: Precision,
+    math: MathArg,
+    /// The file the finger came from, for errors.
+    finger: Option<&'a std::path::Path>,
+}
+
+impl RequiredForceArgs {
+    fn resolve(&self) -> Result<Resolved<'_>, CliError> {
+        let base = |mu, c, gamma, patch, length| Resolved {
+            ft: self.ft,
+            mn: self.mn,
+            mu,
+            c,
+            gamma,
+            patch,
+            length,
+            safety: self.safety,
+            mode: self.mode,
+            n_min: self.n_min,
+            n_max: self.n_max,
+            precision: self.precision,
+            math: self.math,
+            finger: self.finger.as_deref(),
+        };
+        let Some(path) = &self.finger else {
+            // clap requires the three flags without --finger.
+            let missing = |name: &str| CliError::Usage(format!("--{name} is required"));
+            return Ok(base(
+                self.mu.ok_or_else(|| missing("mu"))?,
+                self.c.ok_or_else(|| missing("c"))?,
+                self.gamma.ok_or_else(|| missing("gamma"))?,
+                self.patch,
+                self.length,
+            ));
+        };
+        let f = crate::finger_file::FingerFile::load(path, "--finger")?;
+        let g = &f.finger;
+        if !(g.c.is_finite() && g.gamma.is_finite()) {
+            return Err(CliError::Usage(format!(
+                "--finger: {}: [finger] needs c and gamma (the contact law softgrip \
+                 believes)",
+                path.display()
+            )));
+        }
+        let patch = PatchArgs {
+            shape: g.shape,
+            k: g.k,
+            ..self.patch
+        };
+        Ok(base(f.believed_mu(), g.c, g.gamma, patch, g.half_length_m))
+    }
 }
 
 /// The answer, as `--format json` prints it.
@@ -141,7 +213,7 @@ fn usage(e: ConfigError) -> CliError {
 }
 
 /// Whether the controller of `cfg` builds in the precision of `args`.
-fn builds(args: &RequiredForceArgs, cfg: ControllerConfig) -> bool {
+fn builds(args: &Resolved, cfg: ControllerConfig) -> bool {
     match args.precision {
         Precision::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
         Precision::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
@@ -158,7 +230,7 @@ fn builds(args: &RequiredForceArgs, cfg: ControllerConfig) -> bool {
 ///   derived sensor range admits, times `safety/μ`, overflows the tick) is put on the
 ///   flag that causes it, found by retrying with that flag at an ordinary value:
 ///   `--mu`/`--safety` (their ratio), else `--length`, else `--ft`/`--mn`.
-fn explain(args: &RequiredForceArgs, cfg: ControllerConfig, e: ConfigError) -> CliError {
+fn explain(args: &Resolved, cfg: ControllerConfig, e: ConfigError) -> CliError {
     let reason = config_error("", &e);
     let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
     match e.param() {
@@ -234,7 +306,7 @@ fn finite(name: &str, v: f64) -> Result<f64, CliError> {
 }
 
 /// The controller configuration the arguments describe.
-pub fn config(args: &RequiredForceArgs) -> Result<ControllerConfig, CliError> {
+fn config(args: &Resolved) -> Result<ControllerConfig, CliError> {
     let ft = finite("ft", args.ft)?;
     let mn = finite("mn", args.mn)?;
     let skew = if args.patch.skew == 0.0 {
@@ -325,9 +397,25 @@ fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError
 
 /// Computes the answer for the arguments.
 pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliError> {
+    let args = &args.resolve()?;
     let cfg = config(args)?;
     if let Err(e) = cfg.validate() {
-        return Err(explain(args, cfg, e));
+        return Err(match args.finger {
+            // A value from the file: named by its key there.
+            Some(path)
+                if matches!(e.param(), "mu" | "c_m_per_n_gamma" | "gamma" | "k")
+                    || e.param() == "half_length_m" =>
+            {
+                let reason = config_error("", &e);
+                let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
+                let key = crate::sim::run::scene_key(
+                    e.param(),
+                    &crate::sim::scene::ControllerSettings::default(),
+                );
+                CliError::Usage(format!("--finger: {}: {key}: {reason}", path.display()))
+            }
+            _ => explain(args, cfg, e),
+        });
     }
     // The grid's own checks (its precision, the sensor range), named for the user; the
     // controller is built again below in the precision and math asked for.

@@ -5,25 +5,12 @@
 use super::FingerArgs;
 use crate::brush::BrushFinger;
 use crate::experiment::FingerSpec;
-use crate::input::{read_capped_text, FINGER_CAP_BYTES};
+use crate::finger_file::FingerFile;
 use crate::sim::effects::skewed_pressure::{SkewedPressure, SkewedPressureSettings};
 use crate::sim::effects::Effect;
-use crate::sim::finger::Finger;
 use crate::CliError;
-use serde::Deserialize;
 use softgrip::controller::{FingerShape, SkewParams};
-use std::collections::BTreeMap;
 use std::path::Path;
-
-/// The parts of a scene (or finger file) the experiments need; other keys are ignored.
-#[derive(Debug, Deserialize)]
-struct FingerFile {
-    finger: Finger,
-    #[serde(default)]
-    effects: Vec<String>,
-    #[serde(default)]
-    effect: BTreeMap<String, toml::Table>,
-}
 
 /// The brush finger of `--finger` (a scene or finger file whose `[finger]` has
 /// `model = "brush"`).
@@ -36,9 +23,7 @@ pub fn brush(args: &FingerArgs) -> Result<BrushFinger, CliError> {
         ));
     };
     let usage = |m: String| CliError::Usage(format!("--finger: {}: {m}", path.display()));
-    let text = read_capped_text(path, "--finger", FINGER_CAP_BYTES)
-        .map_err(|e| CliError::Usage(e.to_string()))?;
-    let f: FingerFile = toml::from_str(&text).map_err(|e| usage(e.message().trim().to_string()))?;
+    let f = FingerFile::load(path, "--finger")?;
     f.finger
         .brush_finger()
         .map_err(usage)?
@@ -47,9 +32,7 @@ pub fn brush(args: &FingerArgs) -> Result<BrushFinger, CliError> {
 
 fn from_file(path: &Path) -> Result<FingerSpec, CliError> {
     let usage = |m: String| CliError::Usage(format!("--finger: {}: {m}", path.display()));
-    let text = read_capped_text(path, "--finger", FINGER_CAP_BYTES)
-        .map_err(|e| CliError::Usage(e.to_string()))?;
-    let f: FingerFile = toml::from_str(&text).map_err(|e| usage(e.message().trim().to_string()))?;
+    let f = FingerFile::load(path, "--finger")?;
     let skew = if f.effects.iter().any(|e| e == "skewed_pressure") {
         let table = f.effect.get("skewed_pressure").cloned().unwrap_or_default();
         let settings: SkewedPressureSettings =

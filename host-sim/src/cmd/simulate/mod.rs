@@ -53,6 +53,11 @@ pub struct SimulateArgs {
     /// scripts/firmware-setup.sh).
     #[arg(long)]
     qemu: Option<PathBuf>,
+    /// A finger file (`host-sim calibrate --out`'s, or another scene) whose [finger]
+    /// replaces every scene's, and whose [controller] mu, if set, the μ softgrip
+    /// believes. On a limit-surface finger it is the truth and the belief alike.
+    #[arg(long)]
+    finger: Option<PathBuf>,
     /// Where to write summary.json, the time series and the plots.
     #[arg(long, default_value = "sim-out")]
     out: PathBuf,
@@ -225,9 +230,19 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
              device keeps its grasp between runs; reset it between invocations"
         )));
     }
+    let finger = match &args.finger {
+        Some(path) => Some(crate::finger_file::FingerFile::load(path, "--finger")?),
+        None => None,
+    };
     let mut loaded = Vec::new();
     for p in &paths {
         let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
+        let scene = match &finger {
+            Some(f) => scene
+                .with_finger(f.finger.clone(), f.controller.mu)
+                .map_err(|e| CliError::Usage(format!("--finger: {e}")))?,
+            None => scene,
+        };
         // Settings are checked here, before any run, so a bad one is a usage error.
         let shown = short(&p.display().to_string());
         scene

@@ -16,11 +16,9 @@ pub use export::{flash_bytes, rust_source};
 pub use verify::{deviation, VERIFY_TOLERANCE};
 
 use crate::args::Precision;
-use crate::sim::scene::{ControllerSettings, Finger};
 use crate::CliError;
 use clap::{Args, Subcommand, ValueEnum};
 use indicatif::ProgressBar;
-use serde::Deserialize;
 use softgrip::controller::{Controller, ControllerConfig, Mode};
 use std::path::{Path, PathBuf};
 
@@ -81,19 +79,6 @@ pub struct TablesArgs {
     quiet: bool,
 }
 
-#[derive(Debug, Deserialize)]
-struct FingerFile {
-    finger: Finger,
-    #[serde(default)]
-    controller: ControllerSettings,
-    #[serde(default = "default_tick_hz")]
-    tick_hz: f64,
-}
-
-fn default_tick_hz() -> f64 {
-    1000.0
-}
-
 fn usage(msg: impl std::fmt::Display) -> CliError {
     CliError::Usage(msg.to_string())
 }
@@ -112,11 +97,7 @@ pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
     let cfg = match &args.finger {
         None => ControllerConfig::default(),
         Some(p) => {
-            let text =
-                crate::input::read_capped_text(p, "--finger", crate::input::FINGER_CAP_BYTES)
-                    .map_err(|e| usage(e.to_string()))?;
-            let f: FingerFile = toml::from_str(&text)
-                .map_err(|e| usage(format!("--finger: {}: {}", p.display(), e.message().trim())))?;
+            let f = crate::finger_file::FingerFile::load(p, "--finger")?;
             crate::sim::run::controller_config_for(&f.finger, &f.controller, f.tick_hz)
                 .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?
         }

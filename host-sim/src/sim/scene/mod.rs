@@ -273,6 +273,23 @@ impl Scene {
         Ok(scene)
     }
 
+    /// The scene with another finger (`simulate --finger`): `finger` replaces its
+    /// `[finger]`, and `believed_mu`, if given, its `[controller] mu`. The whole scene is
+    /// checked again (without line numbers: the finger came from another file).
+    pub fn with_finger(
+        mut self,
+        finger: Finger,
+        believed_mu: Option<f64>,
+    ) -> Result<Self, SceneError> {
+        self.finger = finger;
+        if believed_mu.is_some() {
+            self.controller.mu = believed_mu;
+        }
+        self.check("")?;
+        self.fit_brush_law();
+        Ok(self)
+    }
+
     /// Reads each listed effect's `[effect.NAME]` table into its typed settings (the one
     /// place effect settings are read), in pipeline order. A key the effect does not
     /// know, a value that is not a number, or one out of its range is an error naming

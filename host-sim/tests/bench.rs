@@ -39,6 +39,7 @@ fn the_same_seed_gives_the_same_rows_and_another_seed_other_trials() {
     let bar = ProgressBar::hidden();
     let rows = |seed| {
         let r = host_sim::bench::run_family(
+            &families::BenchFinger::default(),
             "mu-mismatch",
             seed,
             4,

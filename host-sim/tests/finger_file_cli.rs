@@ -166,3 +166,46 @@ fn simulate_and_tables_read_the_file() {
         "{err}"
     );
 }
+
+#[test]
+fn bench_runs_every_trial_on_the_file_s_finger() {
+    let f = calibrated();
+    let out = tmp("bench");
+    let (code, _, err) = run(&[
+        "bench",
+        "--finger",
+        f.to_str().unwrap(),
+        "--family",
+        "lift-hold",
+        "--trials",
+        "2",
+        "--controller",
+        "softgrip",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(out.join("trials-lift-hold.csv")).unwrap();
+    let mu: f64 = finger_value(&f, "mu").parse().unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert!(!rows.is_empty());
+    for row in rows {
+        let true_mu: f64 = row.split(',').nth(1).unwrap().parse().unwrap();
+        assert_eq!(true_mu, mu, "{row}");
+    }
+    // The brush finger is a plant of its own, not a bench finger.
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/brush_lift_hold.toml");
+    let (code, _, err) = run(&[
+        "bench",
+        "--finger",
+        scene.to_str().unwrap(),
+        "--trials",
+        "1",
+        "--quiet",
+        "--out",
+        tmp("bench-brush").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("model = \"fls\""), "{err}");
+}

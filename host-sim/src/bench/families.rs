@@ -2,9 +2,12 @@
 //! ranges. Every trial is drawn from the bench seed, the family and the trial's index
 //! (a ChaCha stream of its own), so the same seed gives the same trials.
 //!
-//! All families share the fingertip of the shipped scenes (a hemicylinder, `k = 2`,
-//! `μ = 0.8`, `a = 2.5e-3·N^0.5` m, half-length 10 mm) and softgrip's default limits
-//! (`N_min = 0.2` N, `N_max = 20` N), at 1 kHz, and last 1.2 to 1.5 s.
+//! All families share one fingertip ([`BenchFinger`]): by default that of the shipped
+//! scenes (a hemicylinder, `k = 2`, `μ = 0.8`, `a = 2.5e-3·N^0.5` m, half-length 10 mm),
+//! or a finger file's (`bench --finger`, e.g. `calibrate --out`'s). They share softgrip's
+//! default limits (`N_min = 0.2` N, `N_max = 20` N), at 1 kHz, and last 1.2 to 1.5 s. The
+//! finger's `μ` is the one every controller believes; the `mu-mismatch` family scales
+//! the true one.
 //!
 //! | family | load | ranges (uniform) | effects |
 //! | --- | --- | --- | --- |
@@ -17,18 +20,45 @@
 use crate::sim::scene::Scene;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use softgrip::controller::FingerShape;
 
 /// The families `--family all` runs, in order.
 pub const NAMES: [&str; 5] = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
 
-/// The friction coefficient softgrip and the baselines believe [-].
+/// The friction coefficient softgrip and the baselines believe by default [-].
 pub const BELIEVED_MU: f64 = 0.8;
-/// Half-width coefficient `c` in `a = c·N^γ` [m/N^γ].
-const C: f64 = 2.5e-3;
-/// Exponent `γ`.
-const GAMMA: f64 = 0.5;
-/// Half-length of the patch [m].
-const HALF_LENGTH_M: f64 = 0.01;
+
+/// The fingertip of every trial: the truth's (`mu-mismatch` aside, whose true μ is this
+/// μ scaled) and what every controller believes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BenchFinger {
+    /// Hemicylinder (`rect`) or hemisphere (`disc`).
+    pub shape: FingerShape,
+    /// Pressure exponent `k ≥ 1`.
+    pub k: f64,
+    /// Friction coefficient [-].
+    pub mu: f64,
+    /// `c` in `a = c·N^γ` [m/N^γ].
+    pub c: f64,
+    /// `γ` in `a = c·N^γ`.
+    pub gamma: f64,
+    /// Half-length `l` of the rectangular patch [m].
+    pub half_length_m: f64,
+}
+
+impl Default for BenchFinger {
+    /// The shipped scenes' finger.
+    fn default() -> Self {
+        Self {
+            shape: FingerShape::Rect,
+            k: 2.0,
+            mu: BELIEVED_MU,
+            c: 2.5e-3,
+            gamma: 0.5,
+            half_length_m: 0.01,
+        }
+    }
+}
 /// The greatest command of every trial [N] (softgrip's default).
 pub const N_MAX_N: f64 = 20.0;
 
@@ -56,24 +86,29 @@ fn rng(seed: u64, family: &str, index: usize) -> ChaCha8Rng {
     r
 }
 
-/// The torsion capacity of the two-contact grasp at `n_n` [N·m]: `2·μ·N·a(N)·pitch`,
-/// with the pitch of the symmetric rectangle at that aspect.
-pub fn grasp_torsion_capacity_nm(mu: f64, n_n: f64) -> f64 {
-    let a = C * n_n.powf(GAMMA);
+/// The torsion capacity of the two-contact grasp on `finger` at `n_n` [N·m]:
+/// `2·μ·N·a(N)·pitch`, with the pitch of the symmetric patch at that aspect.
+pub fn grasp_torsion_capacity_nm(finger: &BenchFinger, n_n: f64) -> f64 {
+    let a = finger.c * n_n.powf(finger.gamma);
     let pitch = softgrip::FlsModel::<f64>::new(softgrip::FlsConfig {
-        shape: softgrip::Shape::Rect {
-            aspect: HALF_LENGTH_M / a,
+        shape: match finger.shape {
+            FingerShape::Rect => softgrip::Shape::Rect {
+                aspect: finger.half_length_m / a,
+            },
+            FingerShape::Disc => softgrip::Shape::Disc,
         },
-        k: 2.0,
+        k: finger.k,
         skew: None,
         order: softgrip::QuadratureOrder::DEFAULT,
     })
     .map(|m| m.pitch())
     .unwrap_or(0.0);
-    2.0 * mu * n_n * a * pitch
+    2.0 * finger.mu * n_n * a * pitch
 }
 
+#[allow(clippy::too_many_arguments)]
 fn header(
+    f: &BenchFinger,
     duration_s: f64,
     seed: u64,
     effects: &[&str],
@@ -84,10 +119,15 @@ fn header(
     let list: Vec<String> = effects.iter().map(|e| format!("\"{e}\"")).collect();
     format!(
         "duration_s = {duration_s}\ntick_hz = 1000.0\nseed = {seed}\neffects = [{}]\n\n\
-         [finger]\nshape = \"rect\"\nk = 2.0\nmu = {true_mu:?}\nc = {C:?}\ngamma = {GAMMA:?}\n\
-         half_length_m = {HALF_LENGTH_M:?}\n\n\
+         [finger]\nshape = \"{}\"\nk = {:?}\nmu = {true_mu:?}\nc = {:?}\ngamma = {:?}\n\
+         half_length_m = {:?}\n\n\
          [object]\nmass_kg = {mass:?}\ncom_offset_m = {com:?}\ninertia_kg_m2 = {:?}\n\n",
         list.join(", "),
+        f.shape.name(),
+        f.k,
+        f.c,
+        f.gamma,
+        f.half_length_m,
         // A body about 30 mm in radius of gyration.
         mass * 0.03 * 0.03,
     )
@@ -99,8 +139,24 @@ fn lift(start: f64, end: f64, accel: f64) -> String {
     )
 }
 
-/// Trial `index` of `family` under `seed`, or `None` for an unknown family.
+/// Why no scene accepts `finger`: the scene parser's error on a trial's text (a value out
+/// of range names its `finger.` key).
+pub fn probe(finger: &BenchFinger) -> Result<(), String> {
+    let text = header(finger, 1.0, 0, &[], finger.mu, 0.1, 0.0);
+    Scene::parse(&text).map(|_| ()).map_err(|e| e.to_string())
+}
+
+/// Trial `index` of `family` under `seed` on the default finger, or `None` for an
+/// unknown family.
 pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
+    trial_on(&BenchFinger::default(), family, seed, index)
+}
+
+/// Trial `index` of `family` under `seed` on `finger`, or `None` for an unknown family
+/// (or a finger no scene accepts).
+pub fn trial_on(finger: &BenchFinger, family: &str, seed: u64, index: usize) -> Option<Trial> {
+    let f = finger;
+    let believed = f.mu;
     let family: &'static str = NAMES.iter().find(|n| **n == family)?;
     let mut r = rng(seed, family, index);
     let scene_seed: u64 = r.random();
@@ -110,14 +166,15 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             let com = r.random_range(0.0..=0.02);
             let accel = r.random_range(1.0..=5.0);
             header(
+                f,
                 1.2,
                 scene_seed,
                 &["gravity", "sensor_noise"],
-                BELIEVED_MU,
+                believed,
                 mass,
                 com,
             ) + &lift(0.1, 0.6, accel)
-                + &format!("[controller]\nmu = {BELIEVED_MU:?}\n")
+                + &format!("[controller]\nmu = {believed:?}\n")
         }
         "shake" => {
             let mass = r.random_range(0.05..=0.3);
@@ -127,10 +184,11 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             let tau = r.random_range(0.005..=0.03);
             let slew = r.random_range(100.0..=500.0);
             header(
+                f,
                 1.5,
                 scene_seed,
                 &["gravity", "sensor_noise", "actuator"],
-                BELIEVED_MU,
+                believed,
                 mass,
                 com,
             ) + &lift(0.05, 0.45, 2.0)
@@ -139,7 +197,7 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
                      amplitude_m_s2 = {amp:?}\nfrequency_hz = {freq:?}\n\n\
                      [effect.actuator]\ntime_constant_s = {tau:?}\nslew_n_per_s = {slew:?}\n\
                      max_force_n = {N_MAX_N:?}\n\n\
-                     [controller]\nmu = {BELIEVED_MU:?}\nactuator_lag_s = {tau:?}\n\
+                     [controller]\nmu = {believed:?}\nactuator_lag_s = {tau:?}\n\
                      actuator_slew_n_per_s = {slew:?}\n"
                 )
         }
@@ -148,12 +206,13 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             let com = r.random_range(0.0..=0.005);
             let share = r.random_range(0.05..=1.0);
             let inertia = 2e-4;
-            let moment = share * grasp_torsion_capacity_nm(BELIEVED_MU, N_MAX_N);
+            let moment = share * grasp_torsion_capacity_nm(f, N_MAX_N);
             let mut t = header(
+                f,
                 1.3,
                 scene_seed,
                 &["gravity", "sensor_noise"],
-                BELIEVED_MU,
+                believed,
                 mass,
                 com,
             );
@@ -164,7 +223,7 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             );
             t + &format!(
                 "[[task]]\nkind = \"twist\"\nstart_s = 0.2\nend_s = 1.2\n\
-                 angular_accel_rad_s2 = {:?}\n\n[controller]\nmu = {BELIEVED_MU:?}\n",
+                 angular_accel_rad_s2 = {:?}\n\n[controller]\nmu = {believed:?}\n",
                 moment / inertia
             )
         }
@@ -178,9 +237,9 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             if sensor {
                 effects.push("slip_sensor");
             }
-            header(1.2, scene_seed, &effects, BELIEVED_MU * ratio, mass, com)
+            header(f, 1.2, scene_seed, &effects, believed * ratio, mass, com)
                 + &lift(0.1, 0.6, accel)
-                + &format!("[controller]\nmu = {BELIEVED_MU:?}\n")
+                + &format!("[controller]\nmu = {believed:?}\n")
         }
         "faults" => {
             let mass = r.random_range(0.05..=0.4);
@@ -194,6 +253,7 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
             let trunc = r.random_range(0.0..=0.01);
             let drop = r.random_range(0.0..=0.02);
             header(
+                f,
                 1.2,
                 scene_seed,
                 &[
@@ -203,7 +263,7 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
                     "link_latency",
                     "link_faults",
                 ],
-                BELIEVED_MU,
+                believed,
                 mass,
                 com,
             ) + &lift(0.1, 0.6, accel)
@@ -212,7 +272,7 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
                      [effect.sensor_faults]\ndropout_prob = {dropout:?}\nnan_prob = {nan:?}\n\n\
                      [effect.link_latency]\ndelay_ticks = {delay}\n\n\
                      [effect.link_faults]\nbit_flip_prob = {flip:?}\ntruncate_prob = {trunc:?}\n\
-                     drop_prob = {drop:?}\n\n[controller]\nmu = {BELIEVED_MU:?}\n"
+                     drop_prob = {drop:?}\n\n[controller]\nmu = {believed:?}\n"
                 )
         }
         _ => return None,

@@ -55,6 +55,47 @@ pub struct BenchArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// A finger file (`host-sim calibrate --out`'s, or a scene): every trial's finger and
+    /// the μ every controller believes (a scene's [controller] mu if set); default the
+    /// shipped scenes' finger. The limit-surface finger only.
+    #[arg(long)]
+    pub finger: Option<PathBuf>,
+}
+
+/// The finger of `--finger`, or the default.
+fn bench_finger(args: &BenchArgs) -> Result<families::BenchFinger, CliError> {
+    let Some(path) = &args.finger else {
+        return Ok(families::BenchFinger::default());
+    };
+    let file = crate::finger_file::FingerFile::load(path, "--finger")?;
+    let g = &file.finger;
+    if g.model != crate::sim::finger::FingerModel::Fls {
+        return Err(CliError::Usage(format!(
+            "--finger: {}: bench runs the limit-surface finger (model = \"fls\")",
+            path.display()
+        )));
+    }
+    let finger = families::BenchFinger {
+        shape: g.shape,
+        k: g.k,
+        mu: file.believed_mu(),
+        c: g.c,
+        gamma: g.gamma,
+        half_length_m: g.half_length_m,
+    };
+    // A finger no scene accepts is refused here, naming its key, not as a failed trial.
+    let text = families::trial_on(&finger, families::NAMES[0], 0, 0).map(|t| t.text);
+    if text.is_none() {
+        let why = match families::probe(&finger) {
+            Err(e) => e,
+            Ok(()) => "no trial can be built on it".into(),
+        };
+        return Err(CliError::Usage(format!(
+            "--finger: {}: {why}",
+            path.display()
+        )));
+    }
+    Ok(finger)
 }
 
 /// Trials per family that `--link pty` also runs over the pty and compares.
@@ -95,7 +136,9 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
 }
 
 /// Runs the trials `0..trials` of `family`, in parallel, in index order.
+#[allow(clippy::too_many_arguments)]
 pub fn run_family(
+    finger: &families::BenchFinger,
     family: &str,
     seed: u64,
     trials: usize,
@@ -104,14 +147,14 @@ pub fn run_family(
     trace: Option<&Path>,
     bar: &ProgressBar,
 ) -> Result<Vec<TrialResult>, String> {
-    let first = families::trial(family, seed, 0).ok_or("no such family")?;
+    let first = families::trial_on(finger, family, seed, 0).ok_or("no such family")?;
     // Every trial of a family has the same finger and force range, so one ground truth
     // serves them all (each trial sets its own true μ).
     let truth = run::build_truth(&first.scene)?;
     (0..trials)
         .into_par_iter()
         .map(|i| {
-            let t = families::trial(family, seed, i)
+            let t = families::trial_on(finger, family, seed, i)
                 .ok_or_else(|| format!("{family}: trial {i} could not be built"))?;
             let r = sweep::run_trial(&t, &truth, sweeps, link, trace);
             bar.inc(1);
@@ -122,9 +165,9 @@ pub fn run_family(
 
 /// Runs the first [`PTY_SAMPLE`] trials of `family` with softgrip (both modes, default
 /// knob) over the pty and over the direct link, and checks that the summaries agree.
-fn check_pty(family: &str, seed: u64) -> Result<(), String> {
+fn check_pty(finger: &families::BenchFinger, family: &str, seed: u64) -> Result<(), String> {
     for i in 0..PTY_SAMPLE {
-        let t = families::trial(family, seed, i).ok_or("no such family")?;
+        let t = families::trial_on(finger, family, seed, i).ok_or("no such family")?;
         for c in ["softgrip", "softgrip-table"] {
             let opts = RunOptions {
                 skip_samples: true,
@@ -153,6 +196,7 @@ fn check_pty(family: &str, seed: u64) -> Result<(), String> {
 /// `host-sim bench`.
 pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
     let (families, sweeps) = selection(args)?;
+    let finger = bench_finger(args)?;
     if args.trials == 0 {
         return Err(CliError::Usage("--trials: must be at least 1".into()));
     }
@@ -181,6 +225,7 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
             None
         };
         let results = run_family(
+            &finger,
             family,
             args.seed,
             args.trials,
@@ -191,9 +236,10 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
         )
         .map_err(CliError::Failed)?;
         if pty {
-            check_pty(family, args.seed).map_err(CliError::Failed)?;
+            check_pty(&finger, family, args.seed).map_err(CliError::Failed)?;
         }
         report::write_trials_csv(
+            &finger,
             &args.out.join(format!("trials-{family}.csv")),
             family,
             args.seed,

@@ -74,6 +74,7 @@ pub fn write_json(
 /// oracle force [N], then the run's drop, slip events, slip distance [m], mean and peak
 /// force [N].
 pub fn write_trials_csv(
+    finger: &super::families::BenchFinger,
     path: &Path,
     family: &str,
     seed: u64,
@@ -85,12 +86,13 @@ pub fn write_trials_csv(
          slip_events,slip_distance_m,mean_force_n,peak_force_n\n",
     );
     for (i, r) in results.iter().enumerate() {
-        let (mu, sensor) = super::families::trial(family, seed, i).map_or((f64::NAN, false), |t| {
-            (
-                t.scene.finger.mu,
-                t.scene.effects.iter().any(|e| e == "slip_sensor"),
-            )
-        });
+        let (mu, sensor) =
+            super::families::trial_on(finger, family, seed, i).map_or((f64::NAN, false), |t| {
+                (
+                    t.scene.finger.mu,
+                    t.scene.effects.iter().any(|e| e == "slip_sensor"),
+                )
+            });
         let mut col = 0;
         for sw in sweeps {
             for &v in sw.values {

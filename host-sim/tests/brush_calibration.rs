@@ -89,7 +89,15 @@ fn held_out(rig: &dyn Rig, ctl: &Controller<f64, Libm>, seed: u64) -> Outcome {
     }
 }
 
-fn check(name: &str, toml: &str, shape_half_length_m: f64) {
+/// One finger's figures, as docs/calibration.md's table prints them.
+struct Figures {
+    row: String,
+    mean_ratio: f64,
+    worst_short: f64,
+    worst_short_conservative: f64,
+}
+
+fn check(name: &str, toml: &str, shape_half_length_m: f64) -> Figures {
     let f = finger(toml);
     let brush = f.brush_finger().unwrap().unwrap();
     let mut noise = Noise::new(0.02, 0.0, 0.0, 0.0, 11);
@@ -136,13 +144,28 @@ fn check(name: &str, toml: &str, shape_half_length_m: f64) {
         out.worst_short * 100.0,
         FIT_ERROR * 100.0
     );
+    let pct = |x: f64| format!("{:.1} %", x.max(0.0) * 100.0);
+    Figures {
+        row: format!(
+            "| {name} | {:.3}, {:.2}, {:.3} | {:.3} | {} / {HELD_OUT} | {} | {} ({} / {HELD_OUT}) |",
+            cal.mu.value,
+            cal.k.value,
+            cal.gamma.value,
+            out.mean_ratio,
+            out.short,
+            pct(out.worst_short),
+            pct(safe.worst_short),
+            safe.short
+        ),
+        mean_ratio: out.mean_ratio,
+        worst_short: out.worst_short.max(0.0),
+        worst_short_conservative: safe.worst_short.max(0.0),
+    }
 }
 
-#[test]
-fn soft_hemicylinder() {
-    check(
-        "soft hemicylinder",
-        r#"
+const SOFT: (&str, &str, f64) = (
+    "soft hemicylinder",
+    r#"
         [finger]
         model = "brush"
         shape = "rect"
@@ -155,15 +178,12 @@ fn soft_hemicylinder() {
         mu_kinetic = 0.7
         height_m = 0.003
         "#,
-        0.01,
-    );
-}
+    0.01,
+);
 
-#[test]
-fn stiff_hemicylinder() {
-    check(
-        "stiff hemicylinder",
-        r#"
+const STIFF: (&str, &str, f64) = (
+    "stiff hemicylinder",
+    r#"
         [finger]
         model = "brush"
         shape = "rect"
@@ -177,15 +197,12 @@ fn stiff_hemicylinder() {
         mu_kinetic = 0.55
         height_m = 0.002
         "#,
-        0.008,
-    );
-}
+    0.008,
+);
 
-#[test]
-fn hemisphere() {
-    check(
-        "hemisphere",
-        r#"
+const SPHERE: (&str, &str, f64) = (
+    "hemisphere",
+    r#"
         [finger]
         model = "brush"
         shape = "disc"
@@ -197,11 +214,52 @@ fn hemisphere() {
         mu_kinetic = 0.9
         height_m = 0.003
         "#,
-        0.01,
+    0.01,
+);
+
+/// The three fingers, calibrated and checked in parallel; then the figures quoted by
+/// docs/calibration.md's table and the README are these.
+#[test]
+fn calibrated_on_three_brush_fingers_softgrip_asks_at_most_the_fit_error_less() {
+    let figures: Vec<Figures> = std::thread::scope(|s| {
+        let runs: Vec<_> = [SOFT, STIFF, SPHERE]
+            .into_iter()
+            .map(|(name, toml, l)| s.spawn(move || check(name, toml, l)))
+            .collect();
+        runs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let doc = std::fs::read_to_string(root.join("docs/calibration.md")).unwrap();
+    for f in &figures {
+        assert!(
+            doc.contains(&f.row),
+            "docs/calibration.md lacks the measured row\n{}",
+            f.row
+        );
+    }
+    let means = figures.iter().map(|f| f.mean_ratio);
+    let (lo, hi) = (
+        means.clone().fold(f64::INFINITY, f64::min),
+        means.fold(0.0, f64::max),
+    );
+    let worst = figures.iter().map(|f| f.worst_short).fold(0.0, f64::max);
+    let worst_c = figures
+        .iter()
+        .map(|f| f.worst_short_conservative)
+        .fold(0.0, f64::max);
+    let claim = format!(
+        "asks {lo:.3} to {hi:.3} ×\nthe force at which the finger itself slips on 200 held-out combined loads each, and at\nworst {:.1} % less ({:.1} % with `calibrate --conservative`)",
+        worst * 100.0,
+        worst_c * 100.0
+    );
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    assert!(
+        readme.contains(&claim),
+        "README.md lacks the measured claim\n{claim}"
     );
 }
 
-/// The shipped brush scene's controller believes its finger's calibration, not the
+/// The shipped brush scene's controller believes its calibration, not the
 /// plant's parameters: its `k`, `c`, `gamma` and `[controller] mu` are what `experiment`
 /// and `calibrate` give on that finger's lab data (the commands in the scene's comment).
 #[test]

@@ -232,7 +232,6 @@ fn run_into(
     let dt = 1.0 / scene.tick_hz;
     let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
     let detect_ticks = ((0.01 * scene.tick_hz).ceil() as usize).max(1);
-    let stick_ticks = detect_ticks as u64;
     let mut w = World {
         dt_s: dt,
         mass_kg: scene.object.mass_kg,
@@ -245,10 +244,8 @@ fn run_into(
     let mut frames: Vec<(SensorFrame, LinkFate)> = Vec::with_capacity(4);
     let mut slip_seen: VecDeque<bool> = std::iter::repeat_n(false, detect_ticks).collect();
     let (mut v, mut omega, mut dist, mut rot) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let (mut events, mut stuck_for) = (0u64, u64::MAX);
-    let (mut sum_n, mut peak_n, mut max_u, mut max_micro) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut tally = Tally::new(detect_ticks as u64);
     let mut status = "none";
-    let mut dropped_at: Option<f64> = None;
     let mut missing = 0u64;
     let mut core = Duration::ZERO;
     let (mut brush_s, mut substeps) = (Duration::ZERO, 0u64);
@@ -295,88 +292,49 @@ fn run_into(
         control += since(t1);
 
         let t2 = now(untimed);
-        if let Some(p) = plant.as_mut() {
-            let dropped = dropped_at.is_some();
-            let (tl, slipping, ft, mn) = brush_tick(p, &mut w, dropped);
-            brush_s += since(t2);
-            substeps += p.report().substeps as u64;
-            (dist, rot) = (p.report().slip_distance_m, p.report().slip_rotation_rad);
-            if slipping && !dropped {
-                if stuck_for >= stick_ticks {
-                    events += 1;
+        let dropped = tally.dropped_at.is_some();
+        // The plant step: the true load, whether it slips, and the object's slide.
+        let (tl, slipping, ft, mn) = match plant.as_mut() {
+            Some(p) => {
+                let step = brush_tick(p, &mut w, dropped);
+                brush_s += since(t2);
+                substeps += p.report().substeps as u64;
+                (dist, rot) = (p.report().slip_distance_m, p.report().slip_rotation_rad);
+                core += since(t2);
+                pipeline.contact(&mut w);
+                step
+            }
+            None => {
+                w.half_width_eq_m = truth.half_width_m(w.normal_n);
+                w.half_width_m = w.half_width_eq_m;
+                core += since(t2);
+                pipeline.contact(&mut w);
+                let (ft, mn) = (fx.hypot(fy), w.contact_moment_nm().abs());
+                let tl = truth.evaluate(ft, mn, w.normal_n, w.half_width_m);
+                let slipping = tl.utilisation > 1.0;
+                if slipping && !dropped {
+                    let excess = if tl.utilisation.is_finite() {
+                        1.0 - 1.0 / tl.utilisation
+                    } else {
+                        1.0
+                    };
+                    v += excess * w.force_n[0].hypot(w.force_n[1]) / w.mass_kg * dt;
+                    omega += excess * w.moment_nm.abs() / w.inertia_kg_m2 * dt;
+                    dist += v * dt;
+                    rot += omega * dt;
+                } else if !dropped {
+                    v = 0.0;
+                    omega = 0.0;
                 }
-                stuck_for = 0;
-            } else if !dropped {
-                stuck_for = stuck_for.saturating_add(1);
+                // What the next tick's sensors can know of this one (the slip sensor).
+                w.true_utilisation = tl.utilisation;
+                w.sliding = slipping && !dropped;
+                (tl, slipping, ft, mn)
             }
-            if !dropped && is_drop(dist, rot) {
-                dropped_at = Some(w.t_s);
-            }
-            core += since(t2);
-            pipeline.contact(&mut w);
-            let t3 = now(untimed);
-            slip_seen.push_back(slipping);
-            sum_n += w.normal_n;
-            peak_n = peak_n.max(w.normal_n);
-            max_u = max_u.max(tl.utilisation);
-            if let Some(sink) = sink.as_deref_mut() {
-                sink.sample(&sample(
-                    &w,
-                    &sensed,
-                    (ft, mn),
-                    &tl,
-                    slipping,
-                    (dist, rot),
-                    status,
-                ))?;
-            }
-            core += since(t3);
-            actuate(&mut pipeline, &mut w, has_actuator);
-            report_progress(progress, k);
-            continue;
-        }
-        w.half_width_eq_m = truth.half_width_m(w.normal_n);
-        w.half_width_m = w.half_width_eq_m;
-        core += since(t2);
-        pipeline.contact(&mut w);
+        };
         let t3 = now(untimed);
-        let ft = fx.hypot(fy);
-        let mn = w.contact_moment_nm().abs();
-        let tl = truth.evaluate(ft, mn, w.normal_n, w.half_width_m);
-        let slipping = tl.utilisation > 1.0;
-        let dropped = dropped_at.is_some();
-        if slipping && !dropped {
-            let excess = if tl.utilisation.is_finite() {
-                1.0 - 1.0 / tl.utilisation
-            } else {
-                1.0
-            };
-            v += excess * w.force_n[0].hypot(w.force_n[1]) / w.mass_kg * dt;
-            omega += excess * w.moment_nm.abs() / w.inertia_kg_m2 * dt;
-            dist += v * dt;
-            rot += omega * dt;
-            if stuck_for >= stick_ticks {
-                events += 1;
-            }
-            stuck_for = 0;
-            if is_drop(dist, rot) {
-                dropped_at = Some(w.t_s);
-            }
-        } else if !dropped {
-            v = 0.0;
-            omega = 0.0;
-            stuck_for = stuck_for.saturating_add(1);
-        }
+        tally.record(&w, &tl, slipping, (dist, rot));
         slip_seen.push_back(slipping);
-        // What the next tick's sensors can know of this one (the slip sensor).
-        w.true_utilisation = tl.utilisation;
-        w.sliding = slipping && !dropped;
-        sum_n += w.normal_n;
-        peak_n = peak_n.max(w.normal_n);
-        if tl.utilisation.is_finite() {
-            max_u = max_u.max(tl.utilisation);
-        }
-        max_micro = max_micro.max(w.micro_slip_m);
         if let Some(sink) = sink.as_deref_mut() {
             sink.sample(&sample(
                 &w,
@@ -412,13 +370,17 @@ fn run_into(
     for (name, c) in &effect_costs {
         step_cost_share.insert(name.clone(), share(*c));
     }
-    let mean_n = if ticks > 0 { sum_n / ticks as f64 } else { 0.0 };
+    let mean_n = if ticks > 0 {
+        tally.sum_n / ticks as f64
+    } else {
+        0.0
+    };
     let wall_s = wall.elapsed().as_secs_f64();
     let duration_s = ticks as f64 * dt;
     let mut metrics = ctl.device_metrics().map_err(|e| e.to_string())?;
     metrics.insert("plant_step_s".to_string(), total.as_secs_f64());
     metrics.insert("controller_and_link_s".to_string(), control.as_secs_f64());
-    if let Some(t) = dropped_at {
+    if let Some(t) = tally.dropped_at {
         metrics.insert("dropped_at_s".to_string(), t);
     }
     if plant.is_some() && ticks > 0 {
@@ -433,7 +395,7 @@ fn run_into(
         );
     }
     if pipeline.names().iter().any(|n| n == "partial_slip") {
-        metrics.insert("max_micro_slip_m".to_string(), max_micro);
+        metrics.insert("max_micro_slip_m".to_string(), tally.max_micro_m);
     }
     let surface = if options.skip_samples || plant.is_some() {
         Vec::new()
@@ -444,14 +406,14 @@ fn run_into(
         summary: RunSummary {
             scene: scene.name.clone(),
             controller: controller.to_string(),
-            dropped: dropped_at.is_some(),
-            slip_events: events,
+            dropped: tally.dropped_at.is_some(),
+            slip_events: tally.events,
             slip_distance_m: dist,
             slip_rotation_rad: rot,
             mean_normal_force_n: mean_n,
-            peak_normal_force_n: peak_n,
+            peak_normal_force_n: tally.peak_n,
             expected_slip: scene.expected_slip,
-            max_utilisation: max_u,
+            max_utilisation: tally.max_u,
             ticks,
             duration_s,
             wall_s,
@@ -525,6 +487,60 @@ fn sample(
 /// of the loaded elements that slide (1 in gross slip), `f_norm = |f_t|/(μ_s N)`,
 /// `m_norm = |m_n|/(μ_s N a)` and `pitch` is 0 (there is no limit surface). Sets the
 /// world's half-width, utilisation and sliding for the effects.
+/// A run's statistics, tick by tick, whatever the plant: slip events, the drop, the
+/// normal force's sum and peak, the greatest utilisation and micro-slip.
+#[derive(Debug)]
+struct Tally {
+    /// Ticks of sticking before a slip counts as a new event.
+    stick_ticks: u64,
+    stuck_for: u64,
+    events: u64,
+    dropped_at: Option<f64>,
+    sum_n: f64,
+    peak_n: f64,
+    max_u: f64,
+    max_micro_m: f64,
+}
+
+impl Tally {
+    fn new(stick_ticks: u64) -> Self {
+        Self {
+            stick_ticks,
+            stuck_for: u64::MAX,
+            events: 0,
+            dropped_at: None,
+            sum_n: 0.0,
+            peak_n: 0.0,
+            max_u: 0.0,
+            max_micro_m: 0.0,
+        }
+    }
+
+    /// Counts one tick: `slipping` whether the contact slid, `slide` the object's slip
+    /// distance [m] and rotation [rad] so far. Nothing is counted as slip once dropped.
+    fn record(&mut self, w: &World, tl: &TrueLoad, slipping: bool, slide: (f64, f64)) {
+        if self.dropped_at.is_none() {
+            if slipping {
+                if self.stuck_for >= self.stick_ticks {
+                    self.events += 1;
+                }
+                self.stuck_for = 0;
+            } else {
+                self.stuck_for = self.stuck_for.saturating_add(1);
+            }
+            if is_drop(slide.0, slide.1) {
+                self.dropped_at = Some(w.t_s);
+            }
+        }
+        self.sum_n += w.normal_n;
+        self.peak_n = self.peak_n.max(w.normal_n);
+        if tl.utilisation.is_finite() {
+            self.max_u = self.max_u.max(tl.utilisation);
+        }
+        self.max_micro_m = self.max_micro_m.max(w.micro_slip_m);
+    }
+}
+
 fn brush_tick(plant: &mut BrushPlant, w: &mut World, dropped: bool) -> (TrueLoad, bool, f64, f64) {
     let r = if dropped {
         plant.report()

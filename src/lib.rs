@@ -28,7 +28,7 @@ pub mod quadrature;
 pub mod real;
 pub mod skew;
 
-pub use error::ConfigError;
+pub use error::{BuildError, ConfigError, RangeOverflow};
 pub use fls::{FlsConfig, FlsModel, FlsPoint, FlsTable, Shape};
 pub use quadrature::QuadratureOrder;
 pub use real::Real;

@@ -61,6 +61,6 @@ impl FingerFile {
     /// The friction coefficient the controller believes: `[controller] mu` if the file
     /// sets it, else the finger's.
     pub fn believed_mu(&self) -> f64 {
-        self.controller.mu.unwrap_or(self.finger.mu)
+        self.controller.number("mu").unwrap_or(self.finger.mu)
     }
 }

@@ -120,25 +120,29 @@ pub fn short_num(v: f64) -> String {
 }
 
 /// A core configuration error as the command line reports it: the `flag` the user typed
-/// (without the dashes; the caller maps the core's parameter name to it), then the reason
-/// with the value shortened ([`short_num`]).
+/// (without the dashes; the caller maps the core's parameter name to it), then
+/// [`config_reason`].
 pub fn config_error(flag: &str, e: &softgrip::ConfigError) -> String {
+    format!("--{flag}: {}", config_reason(e))
+}
+
+/// Why a core configuration error refused its parameter, as the tools print it after their
+/// name for the parameter: the value shortened ([`short_num`]), a capacity as "below the
+/// least" or "above the most".
+pub fn config_reason(e: &softgrip::ConfigError) -> String {
     use softgrip::ConfigError as E;
     match *e {
-        E::NonFinite(_) => format!("--{flag}: must be a finite number"),
+        E::NonFinite(_) => "must be a finite number".into(),
         E::OutOfRange {
             value, expected, ..
-        } => format!(
-            "--{flag}: {} is out of range, expected {expected}",
-            short_num(value)
-        ),
+        } => format!("{} is out of range, expected {expected}", short_num(value)),
         E::Capacity {
             requested, limit, ..
         } => {
             if requested < limit {
-                format!("--{flag}: {requested} is below the least, {limit}")
+                format!("{requested} is below the least, {limit}")
             } else {
-                format!("--{flag}: {requested} is above the most, {limit}")
+                format!("{requested} is above the most, {limit}")
             }
         }
     }

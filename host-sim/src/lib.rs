@@ -28,6 +28,7 @@ pub mod args;
 pub mod bench;
 pub mod brush;
 pub mod cmd;
+pub mod config;
 pub mod experiment;
 pub mod finger_file;
 pub mod input;

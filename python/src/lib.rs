@@ -28,7 +28,10 @@ use softgrip::controller::{
     SkewParams, SlipSignal, Status, TickOutput,
 };
 use softgrip::fls::{EllipseFit, InscribedEllipse, RadialGap};
-use softgrip::{ConfigError as CoreConfigError, FlsConfig, FlsModel, FlsTable, QuadratureOrder};
+use softgrip::{
+    BuildError, ConfigError as CoreConfigError, FlsConfig, FlsModel, FlsTable, QuadratureOrder,
+    RangeOverflow,
+};
 
 create_exception!(
     softgrip,
@@ -49,28 +52,21 @@ fn bad(py: Python<'_>, param: &str, text: String) -> PyErr {
     err
 }
 
-/// The core's error, its parameter renamed to the Python keyword `rename` gives.
-fn core_err(py: Python<'_>, e: CoreConfigError, rename: fn(&str) -> &str) -> PyErr {
-    let text = e.to_string();
-    let rest = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
+/// The core's error, its parameter renamed to the Python keyword `rename` gives, then its
+/// reason.
+fn core_err(py: Python<'_>, e: CoreConfigError, rename: fn(&'static str) -> &'static str) -> PyErr {
     let name = rename(e.param());
-    bad(py, name, format!("{name}: {rest}"))
+    bad(py, name, format!("{name}: {}", e.reason()))
 }
 
-fn same(p: &str) -> &str {
+fn same(p: &'static str) -> &'static str {
     p
 }
 
-/// The `Controller` keyword of a parameter the core names otherwise: `QuadratureOrder`
-/// names itself `order` (the field is `quadrature_order`), `ContactSize` its coefficient
-/// `c` (the field is `c_m_per_n_gamma`), the skew's `Δ/a` is the keyword `skew`.
-fn field_name(p: &str) -> &str {
-    match p {
-        "order" => "quadrature_order",
-        "delta_over_a" => "skew",
-        "c" => "c_m_per_n_gamma",
-        other => other,
-    }
+/// The `Controller` keyword of a core parameter: its `ControllerConfig` field
+/// ([`softgrip::error::field_of`]; the skew law's `skew`, `alpha` and `locus` keep theirs).
+fn field_name(p: &'static str) -> &'static str {
+    softgrip::error::field_of(p)
 }
 
 fn finite(py: Python<'_>, name: &str, v: f64) -> PyResult<f64> {

@@ -3,14 +3,29 @@
 use crate::*;
 
 /// The keyword of `required_force` a core parameter corresponds to: the configuration's
-/// field names, as `Controller` takes them (the sensor ranges are set from the loads).
-pub(crate) fn rf_name(param: &str) -> &str {
-    match param {
-        "force_range_n" => "ft",
-        "moment_range_nm" => "mn",
-        "fault_force_n" => "n_min_n",
-        other => field_name(other),
-    }
+/// field ([`softgrip::error::field_of`]), or for a field the rule derives
+/// ([`ControllerConfig::for_loads`]) the keyword it is derived from.
+pub(crate) fn rf_name(param: &'static str) -> &'static str {
+    ControllerConfig::rule_input(field_name(param))
+}
+
+/// A controller build's error under the keyword of its cause: a sensor-range overflow on
+/// `safety` (safety/mu), `ft` (the loads) or `half_length_m` (the contact).
+fn build_err(py: Python<'_>, e: BuildError) -> PyErr {
+    let name = match e {
+        BuildError::Config(e) => return core_err(py, e, rf_name),
+        BuildError::RangeOverflow(RangeOverflow::SafetyOverMu) => "safety",
+        BuildError::RangeOverflow(RangeOverflow::SensorRange) => "ft",
+        BuildError::RangeOverflow(RangeOverflow::Contact) => "half_length_m",
+    };
+    bad(
+        py,
+        name,
+        format!(
+            "{name}: the worst load the sensor range admits, times safety/mu, overflows the \
+             tick's precision"
+        ),
+    )
 }
 
 /// `N_req` for many loads with one controller (see `softgrip.required_force`): the same
@@ -73,6 +88,7 @@ pub(crate) fn required_force<'py>(
         Some(v) => skew_of(v)?,
         None => None,
     };
+    // The configuration `host-sim required-force` builds (the core's rule configuration).
     let cfg = ControllerConfig {
         mu,
         shape: shape_of(py, shape)?,
@@ -84,17 +100,14 @@ pub(crate) fn required_force<'py>(
         safety,
         n_min_n,
         n_max_n,
-        fault_force_n: n_min_n,
-        // The sensor must be able to read every load (as `host-sim required-force`; the
-        // rule itself does not depend on it).
-        force_range_n: (2.0 * ft_max).max(100.0),
-        moment_range_nm: (2.0 * mn_max).max(2.0),
         mode: mode_of(py, mode)?,
-        force_nodes: 64,
-        ..ControllerConfig::default()
-    };
-    let ctl = CoreController::<f64, Libm>::new_precomputed_in::<f64>(cfg)
-        .map_err(|e| core_err(py, e, rf_name))?;
+        ..ControllerConfig::rule_base()
+    }
+    .for_loads(ft_max, mn_max)
+    .check()
+    .map_err(|e| core_err(py, e, rf_name))?;
+    let ctl =
+        CoreController::<f64, Libm>::from_checked_in::<f64>(&cfg).map_err(|e| build_err(py, e))?;
     let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma)
         .map_err(|e| core_err(py, e, rf_name))?;
     let n = ft.len();

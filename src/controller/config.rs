@@ -39,6 +39,7 @@ impl FingerShape {
 /// How the tick tests the load against the limit surface (docs/model.md, "The slip-prevention
 /// rule").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Mode {
     /// The Eq. 10 ellipse with the exact pitch at `l/a(N)`. Cheapest; but the exact surface
     /// lies inside the ellipse near the diagonal, by (radially, `k = 2`) 2.2 % at
@@ -86,6 +87,7 @@ impl SkewParams {
 /// [`Controller::new`](super::Controller::new), which validates it and precomputes the
 /// limit surfaces. Parameter names in errors are the field names.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct ControllerConfig {
     /// Coulomb friction coefficient `μ > 0`.
     pub mu: f64,
@@ -282,5 +284,75 @@ impl ControllerConfig {
             FingerShape::Rect => Shape::Rect { aspect },
             FingerShape::Disc => Shape::Disc,
         }
+    }
+}
+
+/// A configuration that passed [`ControllerConfig::check`]: the one value the host builds
+/// controllers from ([`Controller::from_checked`](super::Controller::from_checked)), so
+/// that a configuration is validated once and passed down. Read it through `Deref`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Checked(ControllerConfig);
+
+impl ControllerConfig {
+    /// Validates the configuration ([`ControllerConfig::validate`]) into a [`Checked`].
+    pub fn check(self) -> Result<Checked, ConfigError> {
+        self.validate()?;
+        Ok(Checked(self))
+    }
+
+    /// The base of the required-force rule's configuration (`host-sim required-force`,
+    /// Python's `required_force`): the defaults with a finer grid of 64 force nodes. The
+    /// caller sets its fields, then [`ControllerConfig::for_loads`] derives the rest.
+    pub fn rule_base() -> Self {
+        Self {
+            force_nodes: 64,
+            ..Self::default()
+        }
+    }
+
+    /// The configuration the required-force rule evaluates loads up to `ft_max_n` and
+    /// `mn_max_nm` with: this one with the fault force at `n_min_n` and sensor ranges that can
+    /// read the loads (twice the largest, at least the defaults). Those three fields are
+    /// derived: see [`ControllerConfig::rule_input`].
+    pub fn for_loads(self, ft_max_n: f64, mn_max_nm: f64) -> Self {
+        let d = Self::default();
+        Self {
+            fault_force_n: self.n_min_n,
+            force_range_n: (2.0 * ft_max_n).max(d.force_range_n),
+            moment_range_nm: (2.0 * mn_max_nm).max(d.moment_range_nm),
+            ..self
+        }
+    }
+
+    /// The required-force rule's input a field of [`ControllerConfig::for_loads`] comes
+    /// from: `ft` for `force_range_n`, `mn` for `moment_range_nm`, `n_min_n` for
+    /// `fault_force_n`; any other field is its own input.
+    pub fn rule_input(field: &'static str) -> &'static str {
+        match field {
+            "force_range_n" => "ft",
+            "moment_range_nm" => "mn",
+            "fault_force_n" => "n_min_n",
+            other => other,
+        }
+    }
+}
+
+impl Checked {
+    /// The validated configuration.
+    pub fn config(&self) -> &ControllerConfig {
+        &self.0
+    }
+
+    /// The same configuration in another mode (the mode is not validated: both are valid).
+    pub fn with_mode(self, mode: Mode) -> Self {
+        Self(ControllerConfig { mode, ..self.0 })
+    }
+}
+
+impl core::ops::Deref for Checked {
+    type Target = ControllerConfig;
+
+    fn deref(&self) -> &ControllerConfig {
+        &self.0
     }
 }

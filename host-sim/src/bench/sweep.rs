@@ -81,8 +81,8 @@ pub fn with_knob(scene: &Scene, controller: &str, value: f64) -> Scene {
     let mut s = scene.clone();
     match controller {
         "constant" => s.controller.constant_force_n = Some(value),
-        "slip-servo" => s.controller.n_min_n = Some(value),
-        _ => s.controller.safety = Some(value),
+        "slip-servo" => s.controller.set("n_min_n", value),
+        _ => s.controller.set("safety", value),
     }
     s
 }

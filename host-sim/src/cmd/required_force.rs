@@ -2,25 +2,18 @@
 //! the controller's own start-up grid and solver.
 
 use crate::accuracy::exact::{ExactSurface, Finger, Rule};
-use crate::args::{PatchArgs, Precision};
-use crate::input::{config_error, short_num};
+use crate::args::Precision;
+use crate::config::names::{flag, scene_key};
+use crate::config::ConfigArgs;
+use crate::input::{config_reason, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use softgrip::contact::ContactSize;
 use softgrip::controller::{
-    Controller, ControllerConfig, Libm, Micromath, Mode, SkewParams, Status, TickMath,
+    Checked, Controller, ControllerConfig, Libm, Micromath, SkewParams, Status, TickMath,
 };
-use softgrip::{ConfigError, Real};
-
-/// How the rule tests the load.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ModeArg {
-    /// The Eq. 10 ellipse with the exact pitch at l/a(N).
-    Ellipse,
-    /// The exact limit surface, tabulated.
-    Table,
-}
+use softgrip::{BuildError, ConfigError, RangeOverflow, Real};
 
 /// Output format of `required-force`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -55,34 +48,22 @@ pub struct RequiredForceArgs {
     /// flags --shape, --k, --mu, --c, --gamma and --length.
     #[arg(long, conflicts_with_all = ["mu", "c", "gamma", "length", "shape", "k"])]
     finger: Option<std::path::PathBuf>,
-    /// Friction coefficient μ > 0.
-    #[arg(long, required_unless_present = "finger")]
-    mu: Option<f64>,
-    /// Contact-size coefficient c in a = c·N^γ [m/N^γ].
-    #[arg(long, required_unless_present = "finger")]
-    c: Option<f64>,
-    /// Contact-size exponent γ in [0, 1/2].
-    #[arg(long, required_unless_present = "finger")]
-    gamma: Option<f64>,
-    /// Shape, pressure exponent, skew (only table mode sees the skew).
+    /// Largest skew of the pressure peak, Δ/a in [0, 1); 0 is the symmetric profile (only
+    /// table mode sees it).
+    #[arg(long, default_value_t = 0.0)]
+    skew: f64,
+    /// Rate α of the skew law Δy = Δ·tanh(α d_c/a).
+    #[arg(long, default_value_t = 1.1)]
+    alpha: f64,
+    /// Half-axis h/a of the peak's locus (Eq. 16); default Δ/2, the paper's circular path.
+    #[arg(long)]
+    locus: Option<f64>,
+    /// The configuration (`--config FILE`, one flag per field: --mu, --c, --gamma,
+    /// --length, --safety, --shape, --k, --mode, --n-min, --n-max, ...) over the rule's
+    /// defaults (ControllerConfig's, with 64 force nodes). The fault force and sensor
+    /// ranges are derived: --n-min, and twice the load.
     #[command(flatten)]
-    patch: PatchArgs,
-    /// Half-length l of the rectangular patch [m] (ignored for the disc).
-    #[arg(long, default_value_t = 0.01)]
-    length: f64,
-    /// Safety factor s >= 1.
-    #[arg(long, default_value_t = 1.3)]
-    safety: f64,
-    /// Ellipse or table (only table mode sees --skew).
-    #[arg(long, value_enum, default_value_t = ModeArg::Ellipse)]
-    mode: ModeArg,
-    /// Lower end of the controller's force grid [N]; answers below it are closed-form
-    /// bounds.
-    #[arg(long, default_value_t = 0.2)]
-    n_min: f64,
-    /// Upper end of the force grid [N]: a larger answer is reported as saturated.
-    #[arg(long, default_value_t = 20.0)]
-    n_max: f64,
+    config: ConfigArgs,
     /// Arithmetic of the grid and the solver.
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     precision: Precision,
@@ -94,54 +75,31 @@ pub struct RequiredForceArgs {
     format: OutFormat,
 }
 
-/// The arguments with the finger resolved: from `--finger`'s file or from the flags.
-#[derive(Debug)]
-struct Resolved<'a> {
-    ft: f64,
-    mn: f64,
-    mu: f64,
-    c: f64,
-    gamma: f64,
-    patch: PatchArgs,
-    length: f64,
-    safety: f64,
-    mode: ModeArg,
-    n_min: f64,
-    n_max: f64,
-    precision: Precision,
-    math: MathArg,
-    /// The file the finger came from, for errors.
-    finger: Option<&'a std::path::Path>,
-}
+/// The fields a finger file gives.
+const FINGER_FIELDS: [&str; 6] = [
+    "mu",
+    "shape",
+    "k",
+    "c_m_per_n_gamma",
+    "gamma",
+    "half_length_m",
+];
 
 impl RequiredForceArgs {
-    fn resolve(&self) -> Result<Resolved<'_>, CliError> {
-        let base = |mu, c, gamma, patch, length| Resolved {
-            ft: self.ft,
-            mn: self.mn,
-            mu,
-            c,
-            gamma,
-            patch,
-            length,
-            safety: self.safety,
-            mode: self.mode,
-            n_min: self.n_min,
-            n_max: self.n_max,
-            precision: self.precision,
-            math: self.math,
-            finger: self.finger.as_deref(),
+    /// The rule's base configuration: its defaults, the finger file's finger if given, and
+    /// the skew flags.
+    fn base(&self) -> Result<ControllerConfig, CliError> {
+        let skew = (self.skew != 0.0).then(|| SkewParams {
+            delta_over_a: self.skew,
+            alpha: self.alpha,
+            locus_over_a: self.locus.unwrap_or(self.skew / 2.0),
+        });
+        let base = ControllerConfig {
+            skew,
+            ..ControllerConfig::rule_base()
         };
         let Some(path) = &self.finger else {
-            // clap requires the three flags without --finger.
-            let missing = |name: &str| CliError::Usage(format!("--{name} is required"));
-            return Ok(base(
-                self.mu.ok_or_else(|| missing("mu"))?,
-                self.c.ok_or_else(|| missing("c"))?,
-                self.gamma.ok_or_else(|| missing("gamma"))?,
-                self.patch,
-                self.length,
-            ));
+            return Ok(base);
         };
         let f = crate::finger_file::FingerFile::load(path, "--finger")?;
         let g = &f.finger;
@@ -152,12 +110,15 @@ impl RequiredForceArgs {
                 path.display()
             )));
         }
-        let patch = PatchArgs {
+        Ok(ControllerConfig {
+            mu: f.believed_mu(),
             shape: g.shape,
             k: g.k,
-            ..self.patch
-        };
-        Ok(base(f.believed_mu(), g.c, g.gamma, patch, g.half_length_m))
+            c_m_per_n_gamma: g.c,
+            gamma: g.gamma,
+            half_length_m: g.half_length_m,
+            ..base
+        })
     }
 }
 
@@ -195,92 +156,76 @@ pub struct RequiredForce {
     pub over_exact: f64,
 }
 
-/// The command-line flag of a configuration field.
-fn flag(param: &str) -> &str {
-    match param {
-        "c_m_per_n_gamma" => "c",
-        "half_length_m" => "length",
-        "n_min_n" | "fault_force_n" => "n-min",
-        "n_max_n" => "n-max",
-        "force_range_n" => "ft",
-        "moment_range_nm" => "mn",
-        other => other,
-    }
-}
-
-fn usage(e: ConfigError) -> CliError {
-    CliError::Usage(config_error(flag(e.param()), &e))
-}
-
-/// Whether the controller of `cfg` builds in the precision of `args`.
-fn builds(args: &Resolved, cfg: ControllerConfig) -> bool {
-    match args.precision {
-        Precision::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
-        Precision::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).is_ok(),
-    }
-}
-
-/// A configuration error as the user should read it: naming the flags they typed.
+/// A configuration error as the user should read it: naming the flag they typed (through
+/// the rename table; the derived fault force and sensor ranges on `--n-min`, `--ft`,
+/// `--mn`), or the finger file's key for a value from it.
 ///
 /// - The core's `aspect` (`l/a`, derived from `--length` and the contact size) is
 ///   reported on `--length`.
 /// - `locus` when `--locus` was not given (it defaults to `--skew`/2) is reported on
 ///   `--skew`.
-/// - The sensor-range overflow (`force_range_n`, `moment_range_nm`: the worst load the
-///   derived sensor range admits, times `safety/μ`, overflows the tick) is put on the
-///   flag that causes it, found by retrying with that flag at an ordinary value:
-///   `--mu`/`--safety` (their ratio), else `--length`, else `--ft`/`--mn`.
-fn explain(args: &Resolved, cfg: ControllerConfig, e: ConfigError) -> CliError {
-    let reason = config_error("", &e);
-    let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
-    match e.param() {
-        "aspect" => CliError::Usage(format!(
+fn explain(args: &RequiredForceArgs, cfg: &ControllerConfig, e: ConfigError) -> CliError {
+    let reason = config_reason(&e);
+    let field = e.field();
+    match (e.param(), &args.finger) {
+        ("aspect", _) => CliError::Usage(format!(
             "--length: {} m gives a contact aspect l/a whose limit surface cannot be \
              computed (l/a {reason})",
-            short_num(args.length)
+            short_num(cfg.half_length_m)
         )),
-        "locus" if args.patch.locus.is_none() => CliError::Usage(format!(
+        ("locus", _) if args.locus.is_none() => CliError::Usage(format!(
             "--skew: {} with the default --locus (skew/2 = {}): {reason}",
-            short_num(args.patch.skew),
-            short_num(args.patch.skew / 2.0)
+            short_num(args.skew),
+            short_num(args.skew / 2.0)
         )),
-        "force_range_n" | "moment_range_nm" => {
-            let overflow = "the worst load the sensor range admits, times safety/mu, \
-                            overflows the tick's precision";
-            let plain = ControllerConfig {
-                mu: 1.0,
-                safety: 1.0,
-                ..cfg
+        (_, Some(path)) if FINGER_FIELDS.contains(&field) && !args.config.sets(field) => {
+            CliError::Usage(format!(
+                "--finger: {}: {}: {reason}",
+                path.display(),
+                scene_key(field, false)
+            ))
+        }
+        ("skew" | "alpha" | "locus", _) => CliError::Usage(format!("--{}: {reason}", e.param())),
+        _ => CliError::Usage(format!(
+            "--{}: {reason}",
+            flag(ControllerConfig::rule_input(field))
+        )),
+    }
+}
+
+/// A build error as the user should read it: a sensor-range overflow on the flags of the
+/// factor that causes it ([`RangeOverflow`]): `--mu`/`--safety` (the more extreme first),
+/// `--length`, or `--ft`/`--mn`.
+fn explain_build(args: &RequiredForceArgs, cfg: &ControllerConfig, e: BuildError) -> CliError {
+    let overflow = "the worst load the sensor range admits, times safety/mu, overflows the \
+                    tick's precision";
+    let name = match e {
+        BuildError::Config(e) => return explain(args, cfg, e),
+        BuildError::RangeOverflow(RangeOverflow::SafetyOverMu) => {
+            let (mu, safety) = (
+                format!("--mu {}", short_num(cfg.mu)),
+                format!("--safety {}", short_num(cfg.safety)),
+            );
+            let (first, second) = if cfg.safety.ln().abs() > cfg.mu.ln().abs() {
+                (safety, mu)
+            } else {
+                (mu, safety)
             };
-            if builds(args, plain) {
-                // The more extreme of the two first.
-                let (mu, safety) = (
-                    format!("--mu {}", short_num(args.mu)),
-                    format!("--safety {}", short_num(args.safety)),
-                );
-                let (first, second) = if args.safety.ln().abs() > args.mu.ln().abs() {
-                    (safety, mu)
-                } else {
-                    (mu, safety)
-                };
-                return CliError::Usage(format!(
-                    "{first} with {second}: safety/mu = {}: {overflow}",
-                    short_num(args.safety / args.mu)
-                ));
-            }
-            let plain = ControllerConfig {
-                half_length_m: 0.01,
-                ..cfg
-            };
-            if builds(args, plain) {
-                return CliError::Usage(format!(
-                    "--length: {} m: {overflow}",
-                    short_num(args.length)
-                ));
-            }
-            let name = if cfg.force_range_n > 100.0 {
+            format!(
+                "{first} with {second}: safety/mu = {}",
+                short_num(cfg.safety / cfg.mu)
+            )
+        }
+        BuildError::RangeOverflow(RangeOverflow::Contact) => {
+            format!("--length: {} m", short_num(cfg.half_length_m))
+        }
+        BuildError::RangeOverflow(RangeOverflow::SensorRange) => {
+            let d = ControllerConfig::default();
+            if cfg.force_range_n > d.force_range_n && cfg.moment_range_nm <= d.moment_range_nm {
                 format!("--ft {}", short_num(args.ft))
-            } else if cfg.moment_range_nm > 2.0 {
+            } else if cfg.moment_range_nm > d.moment_range_nm
+                && cfg.force_range_n <= d.force_range_n
+            {
                 format!("--mn {}", short_num(args.mn))
             } else {
                 format!(
@@ -288,11 +233,10 @@ fn explain(args: &Resolved, cfg: ControllerConfig, e: ConfigError) -> CliError {
                     short_num(args.ft),
                     short_num(args.mn)
                 )
-            };
-            CliError::Usage(format!("{name}: {overflow}"))
+            }
         }
-        _ => usage(e),
-    }
+    };
+    CliError::Usage(format!("{name}: {overflow}"))
 }
 
 fn finite(name: &str, v: f64) -> Result<f64, CliError> {
@@ -305,49 +249,23 @@ fn finite(name: &str, v: f64) -> Result<f64, CliError> {
     }
 }
 
-/// The controller configuration the arguments describe.
-fn config(args: &Resolved) -> Result<ControllerConfig, CliError> {
+/// The controller configuration the arguments describe, checked: the rule's (the core's
+/// [`ControllerConfig::for_loads`], shared with the Python package).
+fn config(args: &RequiredForceArgs) -> Result<Checked, CliError> {
     let ft = finite("ft", args.ft)?;
     let mn = finite("mn", args.mn)?;
-    let skew = if args.patch.skew == 0.0 {
-        None
-    } else {
-        Some(SkewParams {
-            delta_over_a: args.patch.skew,
-            alpha: args.patch.alpha,
-            locus_over_a: args.patch.locus.unwrap_or(args.patch.skew / 2.0),
-        })
-    };
-    Ok(ControllerConfig {
-        mu: args.mu,
-        shape: args.patch.shape,
-        k: args.patch.k,
-        skew,
-        c_m_per_n_gamma: args.c,
-        gamma: args.gamma,
-        half_length_m: args.length,
-        safety: args.safety,
-        n_min_n: args.n_min,
-        n_max_n: args.n_max,
-        fault_force_n: args.n_min,
-        // The sensor must be able to read the load.
-        force_range_n: (2.0 * ft).max(100.0),
-        moment_range_nm: (2.0 * mn).max(2.0),
-        mode: match args.mode {
-            ModeArg::Ellipse => Mode::Ellipse,
-            ModeArg::Table => Mode::Table,
-        },
-        force_nodes: 64,
-        ..ControllerConfig::default()
-    })
+    let cfg = args.config.apply(&args.base()?)?.for_loads(ft, mn);
+    cfg.check().map_err(|e| explain(args, &cfg, e))
 }
 
 fn compute<T: Real, M: TickMath<T>>(
-    cfg: ControllerConfig,
+    args: &RequiredForceArgs,
+    cfg: &Checked,
     ft: f64,
     mn: f64,
 ) -> Result<RequiredForce, CliError> {
-    let ctl = Controller::<T, M>::new_precomputed_in::<f64>(cfg).map_err(usage)?;
+    let ctl =
+        Controller::<T, M>::from_checked_in::<f64>(cfg).map_err(|e| explain_build(args, cfg, e))?;
     let (f, m) = (T::of(ft), T::of(mn));
     let fail = || CliError::Failed("the solver returned no answer".into());
     let req = ctl
@@ -357,7 +275,8 @@ fn compute<T: Real, M: TickMath<T>>(
     let slip = ctl.required_force(f, m, T::one()).ok_or_else(fail)?.force_n;
     let command = req.max(T::of(cfg.n_min_n)).min(T::of(cfg.n_max_n));
     let utilisation = ctl.utilisation(f, m, command).ok_or_else(fail)?;
-    let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma).map_err(usage)?;
+    let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma)
+        .map_err(|e| explain(args, cfg, e))?;
     let n = req.to_f64();
     let status = if n > cfg.n_max_n {
         Status::Saturated
@@ -397,40 +316,12 @@ fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError
 
 /// Computes the answer for the arguments.
 pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliError> {
-    let args = &args.resolve()?;
     let cfg = config(args)?;
-    if let Err(e) = cfg.validate() {
-        return Err(match args.finger {
-            // A value from the file: named by its key there.
-            Some(path)
-                if matches!(e.param(), "mu" | "c_m_per_n_gamma" | "gamma" | "k")
-                    || e.param() == "half_length_m" =>
-            {
-                let reason = config_error("", &e);
-                let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
-                let key = crate::sim::run::scene_key(
-                    e.param(),
-                    &crate::sim::scene::ControllerSettings::default(),
-                );
-                CliError::Usage(format!("--finger: {}: {key}: {reason}", path.display()))
-            }
-            _ => explain(args, cfg, e),
-        });
-    }
-    // The grid's own checks (its precision, the sensor range), named for the user; the
-    // controller is built again below in the precision and math asked for.
-    let built = match args.precision {
-        Precision::F64 => Controller::<f64, Libm>::new_precomputed_in::<f64>(cfg).err(),
-        Precision::F32 => Controller::<f32, Libm>::new_precomputed_in::<f64>(cfg).err(),
-    };
-    if let Some(e) = built {
-        return Err(explain(args, cfg, e));
-    }
     let (ft, mn) = (args.ft.abs(), args.mn.abs());
     let mut r = match (args.precision, args.math) {
-        (Precision::F64, MathArg::Libm) => compute::<f64, Libm>(cfg, ft, mn),
-        (Precision::F32, MathArg::Libm) => compute::<f32, Libm>(cfg, ft, mn),
-        (Precision::F32, MathArg::Micromath) => compute::<f32, Micromath>(cfg, ft, mn),
+        (Precision::F64, MathArg::Libm) => compute::<f64, Libm>(args, &cfg, ft, mn),
+        (Precision::F32, MathArg::Libm) => compute::<f32, Libm>(args, &cfg, ft, mn),
+        (Precision::F32, MathArg::Micromath) => compute::<f32, Micromath>(args, &cfg, ft, mn),
         (Precision::F64, MathArg::Micromath) => Err(CliError::Usage(
             "--math: micromath is f32 only (add --precision f32)".into(),
         )),
@@ -447,6 +338,7 @@ pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliErro
 /// Runs `host-sim required-force`.
 pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
     let r = required_force(args)?;
+    let safety = args.config.apply(&args.base()?)?.safety;
     match args.format {
         OutFormat::Json => {
             let text =
@@ -456,7 +348,7 @@ pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
         OutFormat::Table => {
             println!(
                 "normal_force  {:>14.6e} N   N_req(s), s = {}",
-                r.normal_force, args.safety
+                r.normal_force, safety
             );
             println!("n_slip        {:>14.6e} N", r.n_slip);
             println!(

@@ -4,11 +4,11 @@
 
 use super::{Controller, FromTablesError, TickOutput};
 use crate::controller::capacity::{Capacity, Tables};
-use crate::controller::config::ControllerConfig;
+use crate::controller::config::{Checked, ControllerConfig};
 use crate::controller::lead::Lead;
 use crate::controller::math::TickMath;
 use crate::controller::slip::SlipResponse;
-use crate::error::ConfigError;
+use crate::error::{BuildError, ConfigError, RangeOverflow};
 use crate::real::{Real, SqrtFn};
 use core::marker::PhantomData;
 
@@ -35,6 +35,58 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         let mut c = Self::blank();
         c.rebuild_precomputed_in::<P>(config)?;
         Ok(c)
+    }
+
+    /// A controller from a configuration already checked ([`ControllerConfig::check`]), its
+    /// grid precomputed in the tick's precision `T`: the host's way to build one, validated
+    /// once. A refused sensor range says which factor overflows ([`BuildError`]).
+    pub fn from_checked(config: &Checked) -> Result<Self, BuildError> {
+        Self::from_checked_in::<T>(config)
+    }
+
+    /// [`Controller::from_checked`] with the grid precomputed in precision `P` (stored in
+    /// `T`).
+    pub fn from_checked_in<P: Real>(config: &Checked) -> Result<Self, BuildError> {
+        let cfg = *config.config();
+        let mut c = Self::blank();
+        match c
+            .capacity
+            .build_into::<P>(&cfg, SqrtFn::new(M::startup_sqrt::<P>()))
+        {
+            Ok(()) => {
+                c.set_config(cfg);
+                Ok(c)
+            }
+            Err(e) if e.param() == "force_range_n" => {
+                Err(BuildError::RangeOverflow(c.range_overflow(&cfg)))
+            }
+            Err(e) => Err(BuildError::Config(e)),
+        }
+    }
+
+    /// Which factor makes the sensor ranges of `cfg` overflow, on this controller's grid
+    /// (built up to the range check): `safety/μ` if the rest fits at 1, else the ranges if
+    /// the default ranges fit, else the contact.
+    fn range_overflow(&self, cfg: &ControllerConfig) -> RangeOverflow {
+        use crate::controller::capacity::check_range;
+        let d = ControllerConfig::default();
+        let unscaled = ControllerConfig {
+            mu: 1.0,
+            safety: 1.0,
+            ..*cfg
+        };
+        let ordinary = ControllerConfig {
+            force_range_n: d.force_range_n,
+            moment_range_nm: d.moment_range_nm,
+            ..*cfg
+        };
+        if check_range(&unscaled, &self.capacity).is_ok() {
+            RangeOverflow::SafetyOverMu
+        } else if check_range(&ordinary, &self.capacity).is_ok() {
+            RangeOverflow::SensorRange
+        } else {
+            RangeOverflow::Contact
+        }
     }
 
     /// A controller from exported tables ([`Capacity::tables`], `host-sim tables`): no

@@ -58,6 +58,10 @@ pub struct SimulateArgs {
     /// believes. On a limit-surface finger it is the truth and the belief alike.
     #[arg(long)]
     finger: Option<PathBuf>,
+    /// softgrip's configuration over every scene's: `--config FILE` and one flag per
+    /// field, as if written in each scene's `[controller]` table (the flags over the file).
+    #[command(flatten)]
+    config: crate::config::ConfigArgs,
     /// Where to write summary.json, the time series and the plots.
     #[arg(long, default_value = "sim-out")]
     out: PathBuf,
@@ -234,15 +238,18 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
         Some(path) => Some(crate::finger_file::FingerFile::load(path, "--finger")?),
         None => None,
     };
+    let overrides = args.config.table()?;
     let mut loaded = Vec::new();
     for p in &paths {
         let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
         let scene = match &finger {
             Some(f) => scene
-                .with_finger(f.finger.clone(), f.controller.mu)
+                .with_finger(f.finger.clone(), f.controller.number("mu"))
                 .map_err(|e| CliError::Usage(format!("--finger: {e}")))?,
             None => scene,
         };
+        let mut scene = scene;
+        scene.controller.config.extend(overrides.clone());
         // Settings are checked here, before any run, so a bad one is a usage error.
         let shown = short(&p.display().to_string());
         scene
@@ -250,9 +257,12 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
         let cfg = crate::sim::run::controller_config(&scene)
             .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
-        softgrip::controller::Controller::<f32>::new(cfg).map_err(|e| {
-            let e = crate::sim::run::config_error(&e, &scene.controller, &cfg);
-            CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
+        // The precomputation's own refusals (an l/a it cannot sample, an overflowing
+        // sensor range) as usage errors naming the scene's keys: the device would only say
+        // that its configuration failed.
+        softgrip::controller::Controller::<f32>::from_checked(&cfg).map_err(|e| {
+            let e = crate::sim::run::build_error(&e, &scene.controller, &cfg);
+            CliError::Usage(format!("{shown}: {e}"))
         })?;
         // The baselines' fixed patch (at controller.constant_force_n).
         let constant_n = scene

@@ -16,10 +16,12 @@ pub use export::{flash_bytes, rust_source};
 pub use verify::{deviation, VERIFY_TOLERANCE};
 
 use crate::args::Precision;
+use crate::config::names::flag;
+use crate::input::config_reason;
 use crate::CliError;
 use clap::{Args, Subcommand, ValueEnum};
 use indicatif::ProgressBar;
-use softgrip::controller::{Controller, ControllerConfig, Mode};
+use softgrip::controller::{Checked, Controller, ControllerConfig, Mode};
 use std::path::{Path, PathBuf};
 
 /// Output format of `tables`.
@@ -59,9 +61,10 @@ pub struct TablesArgs {
     /// Export format.
     #[arg(long, value_enum, default_value_t = TableFormat::Bin)]
     format: TableFormat,
-    /// The controller mode the tables serve.
-    #[arg(long, default_value = "table")]
-    mode: String,
+    /// The configuration over the finger's (or the defaults, in table mode): `--config FILE`
+    /// and one flag per field, among them `--mode` (the mode the tables serve).
+    #[command(flatten)]
+    config: crate::config::ConfigArgs,
     /// Arithmetic of the precomputation.
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     precision: Precision,
@@ -83,35 +86,42 @@ fn usage(msg: impl std::fmt::Display) -> CliError {
     CliError::Usage(msg.to_string())
 }
 
-/// The configuration the arguments describe.
-pub fn config(args: &TablesArgs) -> Result<ControllerConfig, CliError> {
-    let mode = match args.mode.as_str() {
-        "table" => Mode::Table,
-        "ellipse" => Mode::Ellipse,
-        other => {
-            return Err(usage(format!(
-                "--mode: \"{other}\" is not ellipse or table"
-            )))
-        }
-    };
-    let cfg = match &args.finger {
-        None => ControllerConfig::default(),
+/// The configuration the arguments describe, checked once: the finger file's (or the
+/// defaults), in table mode, with `--config` and the flags over it.
+pub fn config(args: &TablesArgs) -> Result<Checked, CliError> {
+    let (base, finger) = match &args.finger {
+        None => (ControllerConfig::default(), None),
         Some(p) => {
             let f = crate::finger_file::FingerFile::load(p, "--finger")?;
-            crate::sim::run::controller_config_for(&f.finger, &f.controller, f.tick_hz)
-                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?
+            let cfg = crate::sim::run::scene_config(&f.finger, &f.controller, f.tick_hz)
+                .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?;
+            (cfg, Some((p, f)))
         }
     };
-    let cfg = ControllerConfig { mode, ..cfg };
-    cfg.validate()
-        .map_err(|e| usage(format!("--finger: {e}")))?;
-    Ok(cfg)
+    let cfg = args.config.apply(&ControllerConfig {
+        mode: Mode::Table,
+        ..base
+    })?;
+    cfg.check().map_err(|e| {
+        let field = e.field();
+        match &finger {
+            _ if args.config.sets(field) => {
+                usage(format!("--{}: {}", flag(field), config_reason(&e)))
+            }
+            Some((p, f)) => usage(format!(
+                "--finger: {}: {}",
+                p.display(),
+                crate::sim::run::config_error(&e, &f.controller, &cfg)
+            )),
+            None => usage(format!("--config: {e}")),
+        }
+    })
 }
 
-fn build(cfg: ControllerConfig, precision: Precision) -> Result<Controller<f32>, CliError> {
+fn build(cfg: Checked, precision: Precision) -> Result<Controller<f32>, CliError> {
     match precision {
-        Precision::F64 => Controller::<f32>::new_precomputed_in::<f64>(cfg),
-        Precision::F32 => Controller::<f32>::new(cfg),
+        Precision::F64 => Controller::<f32>::from_checked_in::<f64>(&cfg),
+        Precision::F32 => Controller::<f32>::from_checked(&cfg),
     }
     .map_err(|e| usage(format!("--finger: {e}")))
 }

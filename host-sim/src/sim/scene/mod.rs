@@ -29,7 +29,7 @@
 //! end_s = 0.8
 //! accel_m_s2 = 4.0
 //!
-//! [controller]             # softgrip's settings (all optional)
+//! [controller]             # any field of softgrip's ControllerConfig (all optional)
 //! safety = 1.3
 //! mu = 0.7                 # the μ the controller believes (default: [finger] mu, the true one)
 //! actuator_lag_s = 0.015   # the measured actuator lag [s] (default 0: no anticipation)
@@ -155,38 +155,32 @@ pub struct Phase {
     pub moment_nm: f64,
 }
 
-/// softgrip's settings for the scene; every field has the controller's default.
+/// The scene's `[controller]` table: softgrip's configuration fields, overlaid on the
+/// configuration the finger gives (`crate::sim::run::controller_config`; `mu` defaults to
+/// the finger's, the true one, which the ground truth always uses), and the baselines'
+/// own setting.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ControllerSettings {
-    /// The friction coefficient the controller believes; default the finger's `mu`
-    /// (the true one, which the ground truth always uses).
-    pub mu: Option<f64>,
-    /// The actuator's lag as the integrator measured it [s] (softgrip commands ahead of
-    /// a rising load by about this much); default 0, no anticipation.
-    pub actuator_lag_s: Option<f64>,
-    /// The actuator's slew limit as measured [N/s]; default unlimited.
-    pub actuator_slew_n_per_s: Option<f64>,
-    /// Safety factor.
-    pub safety: Option<f64>,
-    /// Least command [N].
-    pub n_min_n: Option<f64>,
-    /// Greatest command [N].
-    pub n_max_n: Option<f64>,
-    /// Rise rate [N/s].
-    pub rise_rate_n_per_s: Option<f64>,
-    /// Fall rate [N/s].
-    pub fall_rate_n_per_s: Option<f64>,
-    /// Stale timeout [s].
-    pub stale_timeout_s: Option<f64>,
-    /// Fault force [N].
-    pub fault_force_n: Option<f64>,
-    /// Sensor force range [N].
-    pub force_range_n: Option<f64>,
-    /// Sensor moment range [N·m].
-    pub moment_range_nm: Option<f64>,
     /// The force of the `constant` baseline [N]; default the fault force.
     pub constant_force_n: Option<f64>,
+    /// Fields of softgrip's `ControllerConfig`, as written (read by
+    /// [`crate::config::overlay`]: a key it does not have is an error).
+    #[serde(flatten)]
+    pub config: toml::Table,
+}
+
+impl ControllerSettings {
+    /// The number the table sets for `field`, if any (an integer is read as a float, as
+    /// the configuration reads it).
+    pub fn number(&self, field: &str) -> Option<f64> {
+        let v = self.config.get(field)?;
+        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+    }
+
+    /// Sets `field` to `value`.
+    pub fn set(&mut self, field: &str, value: f64) {
+        self.config.insert(field.to_string(), value.into());
+    }
 }
 
 /// Most ticks a scene may have (1e8: 28 hours at 1 kHz). `simulate` streams its samples,
@@ -282,8 +276,8 @@ impl Scene {
         believed_mu: Option<f64>,
     ) -> Result<Self, SceneError> {
         self.finger = finger;
-        if believed_mu.is_some() {
-            self.controller.mu = believed_mu;
+        if let Some(mu) = believed_mu {
+            self.controller.set("mu", mu);
         }
         self.check("")?;
         self.fit_brush_law();
@@ -329,8 +323,8 @@ impl Scene {
             return;
         };
         let d = softgrip::controller::ControllerConfig::default();
-        let lo = self.controller.n_min_n.unwrap_or(d.n_min_n);
-        let hi = self.controller.n_max_n.unwrap_or(d.n_max_n);
+        let lo = self.controller.number("n_min_n").unwrap_or(d.n_min_n);
+        let hi = self.controller.number("n_max_n").unwrap_or(d.n_max_n);
         let (lo, hi) = if lo > 0.0 && hi > lo && hi.is_finite() {
             (lo, hi)
         } else {
@@ -393,6 +387,19 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The `[controller]` table's keys: each a configuration field with a value of its type
+    /// ([`crate::config::overlay`]), named with its line.
+    fn check_controller_keys(&self, text: &str) -> Result<(), SceneError> {
+        let base = softgrip::controller::ControllerConfig::default();
+        crate::config::overlay(&base, &self.controller.config)
+            .map(|_| ())
+            .map_err(|e| {
+                let at = line_of(text, "controller", &e.key)
+                    .map_or(String::new(), |l| format!("line {l}: "));
+                SceneError(format!("{at}controller.{e}"))
+            })
     }
 
     fn check(&self, text: &str) -> Result<(), SceneError> {
@@ -465,6 +472,7 @@ impl Scene {
             }
         }
         positive("finger", "mu", self.finger.mu)?;
+        self.check_controller_keys(text)?;
         self.check_model(text)?;
         positive("finger", "half_length_m", self.finger.half_length_m)?;
         positive("finger", "young_modulus_pa", self.finger.young_modulus_pa)?;

@@ -20,11 +20,12 @@ use crate::link::serial::SerialLink;
 use crate::link::{Link, LinkError};
 use crate::sim::effects::LinkFate;
 use crate::sim::record::LinkSummary;
-use softgrip::controller::{ControllerConfig, Libm, Mode};
+use softgrip::controller::{Checked, ControllerConfig, Libm, Mode};
 use softgrip::protocol::{Reply, Request, SensorFrame};
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 /// Every controller name `--controller` accepts (besides `all`).
 pub const NAMES: [&str; 8] = [
@@ -430,19 +431,29 @@ impl GripController for Baseline {
     }
 }
 
-/// Builds the controller `name` for a scene's configuration.
+/// How many controllers of each name [`build`] has built in this process: for the tests
+/// that check a run builds each of its controllers once.
+static BUILDS: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
+
+/// The controllers [`build`] has built in this process, by name, with how many times.
+pub fn builds() -> BTreeMap<String, usize> {
+    BUILDS.lock().map(|m| m.clone()).unwrap_or_default()
+}
+
+/// Builds the controller `name` for a scene's checked configuration (softgrip's is sent
+/// to the device as it is: it was validated once, by the caller).
 pub fn build(
     name: &str,
-    cfg: &ControllerConfig,
+    cfg: &Checked,
     constant_n: f64,
     link: &LinkKind,
 ) -> Result<Box<dyn GripController>, String> {
+    if let Ok(mut builds) = BUILDS.lock() {
+        *builds.entry(name.to_string()).or_default() += 1;
+    }
     let softgrip = |mode: Option<Mode>| -> Result<Box<dyn GripController>, String> {
-        let cfg = ControllerConfig {
-            mode: mode.unwrap_or(cfg.mode),
-            ..*cfg
-        };
-        SoftgripLink::start(name, cfg, link)
+        let cfg = cfg.with_mode(mode.unwrap_or(cfg.mode));
+        SoftgripLink::start(name, *cfg.config(), link)
             .map(|c| Box::new(c) as Box<dyn GripController>)
             .map_err(|e| e.to_string())
     };

@@ -274,17 +274,17 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
             })?;
         }
-        loaded.push(scene);
+        loaded.push((scene, cfg));
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
     let total: u64 = loaded
         .iter()
-        .map(|s| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
+        .map(|(s, _)| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
         .sum();
     let bar = crate::progress::bar(total, "ticks", args.quiet);
     let mut all: Vec<RunSummary> = Vec::new();
-    for scene in &loaded {
+    for (scene, cfg) in &loaded {
         let mut runs = Vec::new();
         for c in &names {
             bar.set_message(format!("{} / {c}", scene.name));
@@ -294,6 +294,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
             let out = run_streaming(
                 scene,
+                cfg,
                 c,
                 &link,
                 Some(&bar),

@@ -38,6 +38,7 @@ use crate::sim::scene::Scene;
 use crate::sim::task;
 use crate::sim::truth::{TrueLoad, Truth};
 use indicatif::ProgressBar;
+use softgrip::controller::Checked;
 use softgrip::protocol::SensorFrame;
 use std::collections::{BTreeMap, VecDeque};
 use std::time::{Duration, Instant};
@@ -152,12 +153,14 @@ pub fn run_with(
     progress: Option<&ProgressBar>,
     options: RunOptions<'_>,
 ) -> Result<RunOutput, String> {
+    let cfg = controller_config(scene).map_err(|e| e.to_string())?;
     if options.skip_samples {
-        return run_into(scene, controller, link_kind, progress, options, None);
+        return run_into(scene, &cfg, controller, link_kind, progress, options, None);
     }
     let mut samples = Vec::new();
     let mut out = run_into(
         scene,
+        &cfg,
         controller,
         link_kind,
         progress,
@@ -171,9 +174,11 @@ pub fn run_with(
 /// Runs `scene` against `controller` on `link_kind`, handing each tick's sample to `sink`
 /// as it is produced: the run itself keeps nothing per tick (`RunOutput::samples` is
 /// empty; `surface` is computed), so its memory does not grow with its duration.
-/// `options.skip_samples` is ignored.
+/// `options.skip_samples` is ignored. `config` is the scene's configuration as
+/// [`controller_config`] checked it (the caller checked it once, before any run).
 pub fn run_streaming(
     scene: &Scene,
+    config: &Checked,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
@@ -184,13 +189,22 @@ pub fn run_streaming(
         skip_samples: false,
         ..options
     };
-    run_into(scene, controller, link_kind, progress, options, Some(sink))
+    run_into(
+        scene,
+        config,
+        controller,
+        link_kind,
+        progress,
+        options,
+        Some(sink),
+    )
 }
 
 /// The run: samples go to `sink` if there is one; the surface is computed unless
 /// `options.skip_samples`.
 fn run_into(
     scene: &Scene,
+    cfg: &Checked,
     controller: &str,
     link_kind: &LinkKind,
     progress: Option<&ProgressBar>,
@@ -198,7 +212,6 @@ fn run_into(
     mut sink: Option<&mut dyn SampleSink>,
 ) -> Result<RunOutput, String> {
     let wall = Instant::now();
-    let cfg = controller_config(scene).map_err(|e| e.to_string())?;
     let constant_n = scene
         .controller
         .constant_force_n
@@ -221,7 +234,7 @@ fn run_into(
             &built
         }
     };
-    let mut ctl = controllers::build(controller, &cfg, constant_n, link_kind)?;
+    let mut ctl = controllers::build(controller, cfg, constant_n, link_kind)?;
     // The brush finger, when the scene's finger is one: its plant replaces the limit
     // surface and the quasi-static slip accounting below.
     let mut plant = scene

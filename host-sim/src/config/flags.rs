@@ -57,7 +57,8 @@ impl FieldFlag {
             .long(self.flag)
             .value_name(self.value_name)
             .help(format!(
-                "The configuration's `{}` (default here {}).",
+                "Sets ControllerConfig's `{}` (its default: {}; the command's base may \
+                 differ).",
                 self.field, self.default
             ));
         match self.default {

@@ -2,7 +2,7 @@
 //! spreadsheets (`csv`) or for programs (`json`).
 
 use crate::args::{PatchArgs, Precision};
-use crate::input::{config_error, short, short_num};
+use crate::input::{config_error, config_reason, short, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -243,8 +243,7 @@ fn plot(path: &std::path::Path, cfg: FlsConfig) -> Result<(), CliError> {
 /// (it defaults to `--skew`/2) is reported on `--skew`.
 fn model_usage(args: &FlsArgs, e: ConfigError) -> CliError {
     if e.param() == "locus" && args.patch.locus.is_none() {
-        let reason = config_error("", &e);
-        let reason = reason.split_once(": ").map_or(reason.as_str(), |(_, r)| r);
+        let reason = config_reason(&e);
         return CliError::Usage(format!(
             "--skew: {} with the default --locus (skew/2 = {}): {reason}",
             short_num(args.patch.skew),

@@ -49,13 +49,18 @@ impl FingerFile {
     pub fn load(path: &Path, flag: &str) -> Result<Self, CliError> {
         let text = read_capped_text(path, flag, FINGER_CAP_BYTES)
             .map_err(|e| CliError::Usage(e.to_string()))?;
-        toml::from_str(&text).map_err(|e| {
+        let file: Self = toml::from_str(&text).map_err(|e| {
             CliError::Usage(format!(
                 "{flag}: {}: {}",
                 path.display(),
                 e.message().trim()
             ))
-        })
+        })?;
+        // The [controller] keys: configuration fields of their types.
+        let base = softgrip::controller::ControllerConfig::default();
+        crate::config::overlay(&base, &file.controller.config)
+            .map_err(|e| CliError::Usage(format!("{flag}: {}: controller.{e}", path.display())))?;
+        Ok(file)
     }
 
     /// The friction coefficient the controller believes: `[controller] mu` if the file

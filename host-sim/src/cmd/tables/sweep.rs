@@ -54,7 +54,8 @@ pub(super) fn sweep(out: &Path, quiet: bool) -> Result<(), CliError> {
                 mode: Mode::Table,
                 ..ControllerConfig::default()
             };
-            let n_req = Controller::<f64>::new(cfg)
+            let cfg = cfg.check().map_err(|e| e.to_string())?;
+            let n_req = Controller::<f64>::from_checked(&cfg)
                 .map_err(|e| e.to_string())?
                 .required_force(1.0, 0.005, 1.3)
                 .map_or(f64::NAN, |s| s.force_n);

@@ -50,8 +50,9 @@ pub(super) fn verify(file: &Path) -> Result<(), CliError> {
     let blob =
         Blob::parse(&bytes).map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
     let cfg = blob.config();
-    let fresh = Controller::<f32>::new_precomputed_in::<f64>(cfg)
-        .map_err(|e| CliError::Failed(format!("{}: {e}", file.display())))?;
+    let failed = |e: &dyn std::fmt::Display| CliError::Failed(format!("{}: {e}", file.display()));
+    let cfg = cfg.check().map_err(|e| failed(&e))?;
+    let fresh = Controller::<f32>::from_checked_in::<f64>(&cfg).map_err(|e| failed(&e))?;
     let (dev, what) = deviation(&blob.tables(), &fresh.capacity().tables()).ok_or_else(|| {
         CliError::Failed(format!(
             "{}: the table sizes do not match a recomputation",

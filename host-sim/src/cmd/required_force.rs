@@ -129,6 +129,10 @@ pub struct RequiredForce {
     pub normal_force: f64,
     /// `N_slip = N_req(1)` [N].
     pub n_slip: f64,
+    /// The safety factor `s` of `normal_force` (the table output prints it; not in the
+    /// JSON, whose fields are the answer's).
+    #[serde(skip)]
+    pub safety: f64,
     /// Contact half-width at `normal_force` [m].
     pub a: f64,
     /// Utilisation of the (unscaled) load at `command`: `1/s` unless the grid clamps.
@@ -286,6 +290,7 @@ fn compute<T: Real, M: TickMath<T>>(
     Ok(RequiredForce {
         normal_force: n,
         n_slip: slip.to_f64(),
+        safety: cfg.safety,
         a: contact.half_width_m(n),
         utilisation: utilisation.to_f64(),
         status: status.name(),
@@ -338,7 +343,6 @@ pub fn required_force(args: &RequiredForceArgs) -> Result<RequiredForce, CliErro
 /// Runs `host-sim required-force`.
 pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
     let r = required_force(args)?;
-    let safety = args.config.apply(&args.base()?)?.safety;
     match args.format {
         OutFormat::Json => {
             let text =
@@ -348,7 +352,7 @@ pub fn run(args: &RequiredForceArgs) -> Result<(), CliError> {
         OutFormat::Table => {
             println!(
                 "normal_force  {:>14.6e} N   N_req(s), s = {}",
-                r.normal_force, safety
+                r.normal_force, r.safety
             );
             println!("n_slip        {:>14.6e} N", r.n_slip);
             println!(

@@ -73,8 +73,7 @@ impl Qmp {
         let stream = loop {
             match UnixStream::connect(path) {
                 Ok(s) => break s,
-                Err(e) if start.elapsed() < Duration::from_secs(10) => {
-                    let _ = e;
+                Err(_) if start.elapsed() < Duration::from_secs(10) => {
                     std::thread::sleep(Duration::from_millis(50));
                 }
                 Err(e) => panic!("QMP socket {}: {e}", path.display()),

@@ -22,6 +22,11 @@ fn main() {
             "PREBUILT_TABLES",
             "how the tables are made",
         ),
+        (
+            "BOARD",
+            "SQRT_CHECK",
+            "what the firmware runs on (a board that resets, or the emulator's semihosting)",
+        ),
     ] {
         if on(a) && on(b) {
             let name = |f: &str| f.to_lowercase().replace('_', "-");

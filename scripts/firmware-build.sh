@@ -11,7 +11,8 @@
 #   host-sim/tests/qemu_sqrt.rs), defmt (the core's defmt logging with a sink logger,
 #   to measure its flash cost; DEFMT_LOG sets the level compiled in, defmt's default is
 #   error only), board (a real STM32F405/F407: clocks, USART1 pins and baud rate set at
-#   start-up, TIM2 at the 16 MHz reset clock, reset instead of the emulator's exit),
+#   start-up, TIM2 at the 16 MHz reset clock, the actuator's PWM on TIM3 channel 1, reset
+#   instead of the emulator's exit; host-sim/tests/qemu_board.rs, qemu_pwm.rs),
 #   solve-to-cap (the default with every Illinois solve run to its iteration cap: the
 #   worst tick, measured by host-sim/tests/firmware_costs.rs).
 #

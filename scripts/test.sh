@@ -61,8 +61,9 @@ if [ "${SOFTGRIP_SKIP_CARGO:-0}" != 1 ]; then
                 --target thumbv7em-none-eabihf --features "$features" \
                 --target-dir target/firmware/build -- -D warnings || cargo_rc=$?
         done
-        # Mutually exclusive variants refuse to build together (firmware/src/main.rs).
-        for features in firmware,fast-math,soft-sqrt firmware,precompute-f64,prebuilt-tables; do
+        # Mutually exclusive variants refuse to build together (firmware/build.rs).
+        for features in firmware,fast-math,soft-sqrt firmware,precompute-f64,prebuilt-tables \
+            board,sqrt-check; do
             refusal="$(rustup run "$toolchain" cargo check -q -p softgrip-firmware \
                 --target thumbv7em-none-eabihf --features "$features" \
                 --target-dir target/firmware/build 2>&1 || true)"

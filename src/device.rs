@@ -7,7 +7,8 @@
 //! the same answers. The loop is generic over
 //! - the stream: [`embedded_io::Read`] + [`embedded_io::Write`];
 //! - the actuator: any [`ForceActuator`], for example [`PwmForce`] over an
-//!   `embedded-hal` [`SetDutyCycle`] channel;
+//!   `embedded-hal` `SetDutyCycle` channel (the firmware's `board` build drives TIM3's
+//!   channel 1 through it);
 //! - the cost clock: a [`CostClock`] that reads a cycle or instruction counter (TIM2 under
 //!   QEMU) or a host clock, to account for each tick's cost.
 //!
@@ -29,9 +30,11 @@
 //! turns this off with [`Request::SetPacing`]`(`[`Pacing::Lockstep`]`)`: its frames are
 //! then the device's only clock.
 
+mod pwm;
 mod silence;
 mod source;
 
+pub use pwm::PwmForce;
 pub use silence::SilenceWatch;
 pub use source::{ControllerSource, Prebuilt, Precompute};
 
@@ -41,7 +44,6 @@ use crate::protocol::{
     Stats, WireConfigError, MAX_FRAME_LEN, PROTOCOL_VERSION, SCHEMA_KEY,
 };
 use crate::real::Real;
-use embedded_hal::pwm::SetDutyCycle;
 
 /// Where the commanded normal force goes.
 pub trait ForceActuator {
@@ -55,44 +57,6 @@ pub struct NoActuator;
 
 impl ForceActuator for NoActuator {
     fn set_force_n(&mut self, _force_n: f32) {}
-}
-
-/// A force command as a PWM duty cycle: `duty = force / full_scale_n` of the channel's
-/// maximum, clamped to `[0, max]` (for example a current-controlled motor whose stall
-/// force is `full_scale_n` at 100 %).
-#[derive(Debug)]
-pub struct PwmForce<P> {
-    pwm: P,
-    full_scale_n: f32,
-}
-
-impl<P: SetDutyCycle> PwmForce<P> {
-    /// Wraps a PWM channel whose full duty gives `full_scale_n` [N] (`> 0`; a non-positive
-    /// or non-finite value is read as 1 N).
-    pub fn new(pwm: P, full_scale_n: f32) -> Self {
-        let full_scale_n = if full_scale_n > 0.0 && full_scale_n.is_finite() {
-            full_scale_n
-        } else {
-            1.0
-        };
-        Self { pwm, full_scale_n }
-    }
-
-    /// The channel back.
-    pub fn release(self) -> P {
-        self.pwm
-    }
-}
-
-impl<P: SetDutyCycle> ForceActuator for PwmForce<P> {
-    fn set_force_n(&mut self, force_n: f32) {
-        let max = self.pwm.max_duty_cycle();
-        let frac = (force_n / self.full_scale_n).clamp(0.0, 1.0);
-        // `frac` is in [0, 1] (NaN clamps to NaN and casts to 0), so the product fits u16.
-        let duty = (frac * f32::from(max) + 0.5) as u16;
-        // A PWM error cannot be reported from here; the next tick sets the duty again.
-        let _ = self.pwm.set_duty_cycle(duty.min(max));
-    }
 }
 
 /// A free-running counter for cost accounting.
@@ -122,6 +86,7 @@ pub struct Device<M = Libm, S = Precompute<f32>> {
     slots: [Option<Controller<f32, M>>; 2],
     active: Option<usize>,
     source: S,
+    #[cfg(feature = "stack-probe")]
     stack_probe: fn() -> u32,
     shutdown: Option<u8>,
     incompatible: bool,
@@ -142,6 +107,7 @@ impl<M: TickMath<f32>, P: Real> Default for Device<M, Precompute<P>> {
     }
 }
 
+#[cfg(feature = "stack-probe")]
 fn no_stack_probe() -> u32 {
     0
 }
@@ -163,6 +129,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             slots: [None, None],
             active: None,
             source,
+            #[cfg(feature = "stack-probe")]
             stack_probe: no_stack_probe,
             shutdown: None,
             incompatible: false,
@@ -179,15 +146,11 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
     }
 
     /// Reports the stack's high-water mark in [`Stats::stack_peak_bytes`] with `probe`
-    /// (the firmware paints its stack at start-up and scans it).
-    #[inline(always)]
-    pub fn with_stack_probe(mut self, probe: fn() -> u32) -> Self {
-        self.set_stack_probe(probe);
-        self
-    }
-
-    /// [`Device::with_stack_probe`] on a device in place (a device is several KB: a
-    /// microcontroller's start-up should not move it).
+    /// (the firmware paints its stack at start-up and scans it). Only with the feature
+    /// `stack-probe`, which the firmware alone enables: without it the field is 0 (a host
+    /// thread's stack is not the device's). Set in place: a device is several KB, and a
+    /// microcontroller's start-up should not move it.
+    #[cfg(feature = "stack-probe")]
     pub fn set_stack_probe(&mut self, probe: fn() -> u32) {
         self.stack_probe = probe;
     }
@@ -219,7 +182,10 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             worst_tick_cost: self.worst_tick_cost,
             last_tick_cost: self.last_tick_cost,
             startup_cost: self.startup_cost,
+            #[cfg(feature = "stack-probe")]
             stack_peak_bytes: (self.stack_probe)(),
+            #[cfg(not(feature = "stack-probe"))]
+            stack_peak_bytes: 0,
             cost_unit: C::UNIT,
             stale_frames: self.controller().map_or(0, Controller::time_rejections),
             idle_ticks: self.idle_ticks,

@@ -19,8 +19,10 @@
 //! - `Shutdown`: the firmware exits the emulator through semihosting with the requested
 //!   code. A panic exits with code 101 (none is reachable by design).
 //! - On a board (feature `board`, `scripts/firmware-build.sh board`): the clocks, pins and
-//!   baud rate are set first (`board`), TIM2 counts core cycles at the reset clock, and
-//!   `Shutdown` or a panic resets the chip instead of calling the emulator.
+//!   baud rate are set first (`board`), TIM2 counts core cycles at the reset clock, every
+//!   command drives the actuator as TIM3's PWM duty (`pwm`, through embedded-hal's
+//!   `SetDutyCycle` and the core's `PwmForce`), and `Shutdown` or a panic resets the chip
+//!   instead of calling the emulator. The emulator's default build has no actuator.
 //!
 //! The tick's square root is the FPU's `VSQRT` (bit-identical to `libm`'s, which is
 //! software here; `sqrt-check` builds a firmware that checks that and exits). Variants
@@ -41,6 +43,8 @@ mod defmt_sink;
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 mod fpu_sqrt;
+#[cfg(feature = "board")]
+mod pwm;
 #[cfg(feature = "sqrt-check")]
 mod sqrt_check;
 mod stack;
@@ -48,7 +52,7 @@ mod tim2;
 mod usart;
 
 use cortex_m_rt::entry;
-use softgrip::device::{Device, NoActuator, SilenceWatch};
+use softgrip::device::{Device, SilenceWatch};
 
 /// The tables `host-sim tables --format rust` made (feature `prebuilt-tables`).
 #[cfg(feature = "prebuilt-tables")]
@@ -77,6 +81,12 @@ fn main() -> ! {
     board::init();
     let mut clock = tim2::InstructionCounter::start();
     let mut serial = usart::Usart1::init();
+    // The actuator: on a board the force as TIM3's PWM duty; under QEMU's default build
+    // none (the command travels back over the link).
+    #[cfg(feature = "board")]
+    let mut actuator = softgrip::device::PwmForce::new(pwm::Tim3Ch1::init(), pwm::FULL_SCALE_N);
+    #[cfg(not(feature = "board"))]
+    let mut actuator = softgrip::device::NoActuator;
     #[cfg(not(feature = "prebuilt-tables"))]
     let mut device = Device::<Math, softgrip::device::Precompute<Precompute>>::new();
     #[cfg(feature = "prebuilt-tables")]
@@ -92,13 +102,13 @@ fn main() -> ! {
             Err(never) => match never {},
         };
         if ready {
-            match device.poll(&mut serial, &mut NoActuator, &mut clock) {
+            match device.poll(&mut serial, &mut actuator, &mut clock) {
                 Ok(_) => {}
                 Err(never) => match never {},
             }
         }
         let now = softgrip::device::CostClock::now(&mut clock);
-        device.idle_ticks_due(&mut watch, now, &mut NoActuator);
+        device.idle_ticks_due(&mut watch, now, &mut actuator);
         if let Some(code) = device.shutdown_requested() {
             break code;
         }

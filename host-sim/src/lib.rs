@@ -1,13 +1,15 @@
 //! `host-sim`: the std side of softgrip.
 //!
 //! - [`cmd`]: the commands `fls` (friction-limit-surface sweeps), `required-force` (the
-//!   slip-prevention rule for one load), `simulate` (the grasp simulator, over [`sim`]) and
-//!   `tables` (table export and verification, limit-surface plots and sweeps), siblings
-//!   that share only [`args`], [`input`] and [`plot`].
+//!   slip-prevention rule for one load), `simulate` (the grasp simulator, over [`sim`]),
+//!   `tables` (table export and verification, limit-surface plots and sweeps), `bench` and
+//!   `accuracy` (thin, over the modules of those names), `experiment` and `calibrate`,
+//!   siblings that share only [`args`], [`input`] and [`plot`].
 //! - [`experiment`]: lab experiments on a plant behind the [`experiment::Rig`] trait
 //!   (`host-sim experiment`; `host-sim calibrate` fits their files).
-//! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`).
-//! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
+//! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`),
+//!   on plain options.
+//! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`), on plain options.
 //! - [`brush`]: the brush finger, a physical fingertip plant of its own (elastic
 //!   foundation, stick–slip bristles, object dynamics) that the simulator can use as its
 //!   ground truth instead of softgrip's limit surface (`[finger] model = "brush"`).

@@ -7,11 +7,12 @@
 
 use clap::{Parser, Subcommand};
 use host_sim::cmd::tables as tables_cmd;
+use host_sim::cmd::{accuracy as accuracy_cmd, bench as bench_cmd};
 use host_sim::cmd::{calibrate as calibrate_cmd, experiment as experiment_cmd};
 use host_sim::cmd::{
     fls as fls_cmd, required_force as required_force_cmd, simulate as simulate_cmd,
 };
-use host_sim::{accuracy, bench, CliError};
+use host_sim::CliError;
 use std::process::ExitCode;
 
 /// Host tools for the softgrip fingertip controller.
@@ -34,9 +35,9 @@ enum Command {
     RequiredForce(required_force_cmd::RequiredForceArgs),
     /// Every controller over its knob on random trials of scene families: drops and
     /// force over the oracle, tables, bench.json and Pareto plots.
-    Bench(bench::BenchArgs),
+    Bench(bench_cmd::BenchArgs),
     /// Regenerate the accuracy/time report (accuracy.md, accuracy.svg).
-    Accuracy(accuracy::AccuracyArgs),
+    Accuracy(accuracy_cmd::AccuracyArgs),
     /// Lab experiments on a finger: the CSVs (and plots) a lab would record.
     Experiment(experiment_cmd::ExperimentArgs),
     /// Fit the finger's parameters to indentation and slip-onset CSVs, with 95 % intervals.
@@ -62,9 +63,9 @@ fn main() -> ExitCode {
         Command::Fls(args) => fls_cmd::run(&args),
         Command::RequiredForce(args) => required_force_cmd::run(&args),
         Command::Simulate(args) => simulate_cmd::run_cmd(&args),
-        Command::Accuracy(args) => accuracy::run(&args),
+        Command::Accuracy(args) => accuracy_cmd::run(&args),
         Command::Tables(args) => tables_cmd::run(&args),
-        Command::Bench(args) => bench::run_cmd(&args),
+        Command::Bench(args) => bench_cmd::run(&args),
         Command::Experiment(args) => experiment_cmd::run(&args),
         Command::Calibrate(args) => calibrate_cmd::run(&args),
     };

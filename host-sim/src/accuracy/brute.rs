@@ -97,66 +97,8 @@ pub fn compare(b: &Budget) -> Result<BruteReport, String> {
             (p.f, p.m)
         })
         .collect();
-    let err_of = |pts: &[(f64, f64)]| {
-        pts.iter()
-            .zip(&exact)
-            .map(|(p, e)| (p.0 - e.0).abs().max((p.1 - e.1).abs()))
-            .fold(0.0f64, f64::max)
-    };
-    let orders: Vec<usize> = if b.quick {
-        vec![4, 6, 8, 12, 16, 20, 28]
-    } else {
-        vec![4, 5, 6, 7, 8, 10, 12, 14, 16, 20, 24, 28, 40]
-    };
-    let mut core = Vec::new();
-    for &o in &orders {
-        let model = core_model(o)?;
-        let pts: Vec<(f64, f64)> = DS
-            .iter()
-            .map(|&d| {
-                let p = model.point(d);
-                (p.f, p.m)
-            })
-            .collect();
-        let passes = if b.quick { 50 } else { 400 };
-        let us = time_per_point(b.rounds, passes * DS.len(), || {
-            for _ in 0..passes {
-                for &d in &DS {
-                    black_box(black_box(&model).point(black_box(d)));
-                }
-            }
-        });
-        core.push(Method {
-            setting: o,
-            err: err_of(&pts),
-            us,
-        });
-    }
-    let cells: Vec<usize> = if b.quick {
-        vec![2, 4, 8, 16]
-    } else {
-        vec![2, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128]
-    };
-    let case = Case {
-        patch: Patch::Rect { aspect: 1.0 },
-        k: 2.0,
-        skew: None,
-    };
-    let mut brute = Vec::new();
-    for &c in &cells {
-        let pts: Vec<(f64, f64)> = DS.iter().map(|&d| case.point(d, c)).collect();
-        let reps = if c >= 32 { 3 } else { 5 };
-        let us = time_per_point(reps, DS.len(), || {
-            for &d in &DS {
-                black_box(case.point(black_box(d), c));
-            }
-        });
-        brute.push(Method {
-            setting: c,
-            err: err_of(&pts),
-            us,
-        });
-    }
+    let core = core_methods(b, &exact)?;
+    let brute = brute_methods(b, &exact);
     let matched = brute
         .iter()
         .map(|&bm| Matched {
@@ -190,4 +132,76 @@ pub fn compare(b: &Budget) -> Result<BruteReport, String> {
         brute_at_default,
         reached,
     })
+}
+
+/// The worst error of the points `pts` (at [`DS`]) against `exact`, in `f̃` or `m̃`.
+fn worst_err(pts: &[(f64, f64)], exact: &[(f64, f64)]) -> f64 {
+    pts.iter()
+        .zip(exact)
+        .map(|(p, e)| (p.0 - e.0).abs().max((p.1 - e.1).abs()))
+        .fold(0.0f64, f64::max)
+}
+
+/// The core at each quadrature order the budget tries, against `exact`.
+fn core_methods(b: &Budget, exact: &[(f64, f64)]) -> Result<Vec<Method>, String> {
+    let orders: Vec<usize> = if b.quick {
+        vec![4, 6, 8, 12, 16, 20, 28]
+    } else {
+        vec![4, 5, 6, 7, 8, 10, 12, 14, 16, 20, 24, 28, 40]
+    };
+    let mut core = Vec::new();
+    for &o in &orders {
+        let model = core_model(o)?;
+        let pts: Vec<(f64, f64)> = DS
+            .iter()
+            .map(|&d| {
+                let p = model.point(d);
+                (p.f, p.m)
+            })
+            .collect();
+        let passes = if b.quick { 50 } else { 400 };
+        let us = time_per_point(b.rounds, passes * DS.len(), || {
+            for _ in 0..passes {
+                for &d in &DS {
+                    black_box(black_box(&model).point(black_box(d)));
+                }
+            }
+        });
+        core.push(Method {
+            setting: o,
+            err: worst_err(&pts, exact),
+            us,
+        });
+    }
+    Ok(core)
+}
+
+/// The brute force at each cell count the budget tries, against `exact`.
+fn brute_methods(b: &Budget, exact: &[(f64, f64)]) -> Vec<Method> {
+    let cells: Vec<usize> = if b.quick {
+        vec![2, 4, 8, 16]
+    } else {
+        vec![2, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128]
+    };
+    let case = Case {
+        patch: Patch::Rect { aspect: 1.0 },
+        k: 2.0,
+        skew: None,
+    };
+    let mut brute = Vec::new();
+    for &c in &cells {
+        let pts: Vec<(f64, f64)> = DS.iter().map(|&d| case.point(d, c)).collect();
+        let reps = if c >= 32 { 3 } else { 5 };
+        let us = time_per_point(reps, DS.len(), || {
+            for &d in &DS {
+                black_box(case.point(black_box(d), c));
+            }
+        });
+        brute.push(Method {
+            setting: c,
+            err: worst_err(&pts, exact),
+            us,
+        });
+    }
+    brute
 }

@@ -15,6 +15,9 @@
 //! - [`brute`]: the brute-force comparison.
 //! - [`target`]: instruction counts in QEMU (`--target`).
 //! - [`report`]: the Markdown and the plot.
+//!
+//! [`run`] is the whole report on plain options ([`AccuracyOptions`]); the command
+//! `host-sim accuracy` (`cmd::accuracy`) parses its arguments into them.
 
 pub mod brute;
 pub mod exact;
@@ -23,30 +26,56 @@ pub mod knobs;
 pub mod report;
 pub mod target;
 
-use crate::CliError;
-use clap::Args;
 use indicatif::ProgressBar;
 use knobs::{Budget, FingerRef, Knob, Measured, Variant};
 use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Arguments of `host-sim accuracy`.
-#[derive(Debug, Args)]
-pub struct AccuracyArgs {
-    /// Fewer settings, loads and repetitions: finishes within a minute on two cores.
-    #[arg(long)]
-    quick: bool,
-    /// Where to write accuracy.md and accuracy.svg.
-    #[arg(long, default_value = "accuracy-out")]
-    out: PathBuf,
-    /// Also count instructions on the emulated Cortex-M4F (needs
-    /// scripts/firmware-setup.sh and scripts/firmware-build.sh; slow).
-    #[arg(long)]
-    target: bool,
+/// What an accuracy run measures and where it writes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct AccuracyOptions {
+    /// Fewer settings, loads and repetitions ([`Budget::quick`]).
+    pub quick: bool,
+    /// Also count instructions on the emulated Cortex-M4F (needs the firmware set up and
+    /// built; slow).
+    pub target: bool,
     /// No progress bar, no progress lines.
-    #[arg(long)]
-    quiet: bool,
+    pub quiet: bool,
+    /// The directory of `accuracy.md` and `accuracy.svg`.
+    pub out: PathBuf,
+}
+
+/// Why an accuracy run failed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum AccuracyError {
+    /// A file or directory under the output directory could not be written (the path and
+    /// the reason).
+    Write(String),
+    /// A measurement failed.
+    Measure(String),
+}
+
+impl fmt::Display for AccuracyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AccuracyError::Write(e) | AccuracyError::Measure(e) => f.write_str(e),
+        }
+    }
+}
+
+impl std::error::Error for AccuracyError {}
+
+/// A finished run: what it measured and the files it wrote.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// What was measured.
+    pub results: Results,
+    /// `accuracy.md`.
+    pub markdown: PathBuf,
+    /// `accuracy.svg`.
+    pub plot: PathBuf,
 }
 
 /// Where and when the report was made.
@@ -209,7 +238,8 @@ impl Drop for Progress {
     }
 }
 
-/// Measures everything `args` asks for.
+/// Measures everything: quicker if `quick`, with the instruction counts on the target if
+/// `with_target`, its progress on stderr unless `quiet`.
 pub fn measure_all(quick: bool, with_target: bool, quiet: bool) -> Result<Results, String> {
     let started = Instant::now();
     let budget = if quick {
@@ -234,17 +264,64 @@ pub fn measure_all(quick: bool, with_target: bool, quiet: bool) -> Result<Result
         FingerRef::build("disc", knobs::disc_config(), &budget)?,
     ];
     progress.steps(2);
+    let mut measured = measure_configurations(&sections, &fingers, &progress)?;
+    time_configurations(&mut measured, &fingers, &budget, &progress)?;
+    progress.phase("aspect grid and surface representations");
+    let extras = Extras::measure(&fingers, &budget)?;
+    progress.steps(1);
+    progress.phase("core against brute force");
+    let brute = brute::compare(&budget)?;
+    progress.steps(1);
+    let target = if with_target {
+        progress.phase("instruction counts in QEMU");
+        target::measure(&measured, &budget, &progress)
+    } else {
+        Err("not measured in this run (`--target`)".into())
+    };
+    Ok(Results {
+        header,
+        budget,
+        fingers,
+        sections,
+        measured,
+        aspect_grid: extras.aspect_grid,
+        probes: extras.probes,
+        representation: extras.representation,
+        brute,
+        target,
+        elapsed_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// Each distinct configuration of `sections`, measured once against `fingers` (its
+/// timings left for [`time_configurations`]).
+fn measure_configurations(
+    sections: &[(Knob, Vec<(String, Variant)>)],
+    fingers: &[FingerRef; 2],
+    progress: &Progress,
+) -> Result<BTreeMap<Variant, Measured>, String> {
     let mut measured: BTreeMap<Variant, Measured> = BTreeMap::new();
-    for (knob, rows) in &sections {
+    for (knob, rows) in sections {
         progress.phase(&format!("{} ({} settings)", knob.title(), rows.len()));
         for (_, v) in rows {
             if !measured.contains_key(v) {
-                let m = knobs::measure(v, &fingers)?;
+                let m = knobs::measure(v, fingers)?;
                 measured.insert(*v, m);
                 progress.steps(1);
             }
         }
     }
+    Ok(measured)
+}
+
+/// The host time of each configuration of `measured`, per precomputation and per tick:
+/// the median over the budget's rounds, every configuration timed once in each round.
+fn time_configurations(
+    measured: &mut BTreeMap<Variant, Measured>,
+    fingers: &[FingerRef; 2],
+    budget: &Budget,
+    progress: &Progress,
+) -> Result<(), String> {
     progress.phase(&format!(
         "timing {} configurations, {} rounds",
         measured.len(),
@@ -255,7 +332,7 @@ pub fn measure_all(quick: bool, with_target: bool, quiet: bool) -> Result<Result
         .map(|v| {
             Ok((
                 *v,
-                knobs::timer(v, &fingers, &budget)?,
+                knobs::timer(v, fingers, budget)?,
                 Vec::new(),
                 Vec::new(),
             ))
@@ -275,68 +352,59 @@ pub fn measure_all(quick: bool, with_target: bool, quiet: bool) -> Result<Result
             m.tick_ns = knobs::median(ticks);
         }
     }
-    progress.phase("aspect grid and surface representations");
-    let aspect_grid = extras::aspect_grid_rows(&fingers[0].reference, &budget.aspects, &budget)?;
-    let probes = extras::representation_probes(&fingers[0].reference)
-        .into_iter()
-        .map(|(name, _)| name)
-        .collect();
-    let representation = extras::representation_rows(
-        &fingers[0].reference,
-        &fingers[1].reference,
-        &budget.samples,
-        &budget,
-    )?;
-    progress.steps(1);
-    progress.phase("core against brute force");
-    let brute = brute::compare(&budget)?;
-    progress.steps(1);
-    let target = if with_target {
-        progress.phase("instruction counts in QEMU");
-        target::measure(&measured, &budget, &progress)
-    } else {
-        Err("not measured in this run (`--target`)".into())
-    };
-    Ok(Results {
-        header,
-        budget,
-        fingers,
-        sections,
-        measured,
-        aspect_grid,
-        probes,
-        representation,
-        brute,
-        target,
-        elapsed_s: started.elapsed().as_secs_f64(),
-    })
+    Ok(())
 }
 
-/// Runs `host-sim accuracy`.
-pub fn run(args: &AccuracyArgs) -> Result<(), CliError> {
-    let fail = |e: &dyn std::fmt::Display| CliError::Failed(format!("--out: {e}"));
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| fail(&format!("{}: {e}", args.out.display())))?;
-    let md_path = args.out.join("accuracy.md");
-    let svg_path = args.out.join("accuracy.svg");
+/// The aspect grid's and the surface representations' own errors.
+struct Extras {
+    aspect_grid: Vec<extras::AspectGridRow>,
+    probes: Vec<String>,
+    representation: Vec<extras::RepresentationRow>,
+}
+
+impl Extras {
+    /// Measured on the rectangle and the disc of `fingers`.
+    fn measure(fingers: &[FingerRef; 2], budget: &Budget) -> Result<Self, String> {
+        let rect = &fingers[0].reference;
+        let aspect_grid = extras::aspect_grid_rows(rect, &budget.aspects, budget)?;
+        let probes = extras::representation_probes(rect)
+            .into_iter()
+            .map(|(name, _)| name)
+            .collect();
+        let representation =
+            extras::representation_rows(rect, &fingers[1].reference, &budget.samples, budget)?;
+        Ok(Extras {
+            aspect_grid,
+            probes,
+            representation,
+        })
+    }
+}
+
+/// Measures what `opts` asks for and writes `accuracy.md` and `accuracy.svg` in its
+/// directory (checked writable before the measurements).
+pub fn run(opts: &AccuracyOptions) -> Result<Report, AccuracyError> {
+    let write_err =
+        |p: &Path, e: &dyn fmt::Display| AccuracyError::Write(format!("{}: {e}", p.display()));
+    std::fs::create_dir_all(&opts.out).map_err(|e| write_err(&opts.out, &e))?;
+    let markdown = opts.out.join("accuracy.md");
+    let plot = opts.out.join("accuracy.svg");
     // Fail now, not after the measurements, if the files cannot be written.
-    for p in [&md_path, &svg_path] {
+    for p in [&markdown, &plot] {
         std::fs::OpenOptions::new()
             .create(true)
             .append(true)
             .open(p)
-            .map_err(|e| fail(&format!("{}: {e}", p.display())))?;
+            .map_err(|e| write_err(p, &e))?;
     }
-    let results = measure_all(args.quick, args.target, args.quiet).map_err(CliError::Failed)?;
-    report::plot(&svg_path, &results).map_err(|e| fail(&e))?;
+    let results =
+        measure_all(opts.quick, opts.target, opts.quiet).map_err(AccuracyError::Measure)?;
+    report::plot(&plot, &results).map_err(AccuracyError::Write)?;
     let md = report::markdown(&results);
-    std::fs::write(&md_path, md).map_err(|e| fail(&format!("{}: {e}", md_path.display())))?;
-    print!("{}", report::summary(&results));
-    println!(
-        "wrote {} and {} ({:.0} s)",
-        md_path.display(),
-        svg_path.display(),
-        results.elapsed_s
-    );
-    Ok(())
+    std::fs::write(&markdown, md).map_err(|e| write_err(&markdown, &e))?;
+    Ok(Report {
+        results,
+        markdown,
+        plot,
+    })
 }

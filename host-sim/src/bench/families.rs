@@ -155,126 +155,15 @@ pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
 /// Trial `index` of `family` under `seed` on `finger`, or `None` for an unknown family
 /// (or a finger no scene accepts).
 pub fn trial_on(finger: &BenchFinger, family: &str, seed: u64, index: usize) -> Option<Trial> {
-    let f = finger;
-    let believed = f.mu;
     let family: &'static str = NAMES.iter().find(|n| **n == family)?;
     let mut r = rng(seed, family, index);
     let scene_seed: u64 = r.random();
     let text = match family {
-        "lift-hold" => {
-            let mass = r.random_range(0.05..=0.5);
-            let com = r.random_range(0.0..=0.02);
-            let accel = r.random_range(1.0..=5.0);
-            header(
-                f,
-                1.2,
-                scene_seed,
-                &["gravity", "sensor_noise"],
-                believed,
-                mass,
-                com,
-            ) + &lift(0.1, 0.6, accel)
-                + &format!("[controller]\nmu = {believed:?}\n")
-        }
-        "shake" => {
-            let mass = r.random_range(0.05..=0.3);
-            let com = r.random_range(0.0..=0.01);
-            let freq = r.random_range(2.0..=8.0);
-            let amp = r.random_range(2.0..=10.0);
-            let tau = r.random_range(0.005..=0.03);
-            let slew = r.random_range(100.0..=500.0);
-            header(
-                f,
-                1.5,
-                scene_seed,
-                &["gravity", "sensor_noise", "actuator"],
-                believed,
-                mass,
-                com,
-            ) + &lift(0.05, 0.45, 2.0)
-                + &format!(
-                    "[[task]]\nkind = \"shake\"\nstart_s = 0.5\nend_s = 1.5\n\
-                     amplitude_m_s2 = {amp:?}\nfrequency_hz = {freq:?}\n\n\
-                     [effect.actuator]\ntime_constant_s = {tau:?}\nslew_n_per_s = {slew:?}\n\
-                     max_force_n = {N_MAX_N:?}\n\n\
-                     [controller]\nmu = {believed:?}\nactuator_lag_s = {tau:?}\n\
-                     actuator_slew_n_per_s = {slew:?}\n"
-                )
-        }
-        "twist" => {
-            let mass = r.random_range(0.02..=0.15);
-            let com = r.random_range(0.0..=0.005);
-            let share = r.random_range(0.05..=1.0);
-            let inertia = 2e-4;
-            let moment = share * grasp_torsion_capacity_nm(f, N_MAX_N);
-            let mut t = header(
-                f,
-                1.3,
-                scene_seed,
-                &["gravity", "sensor_noise"],
-                believed,
-                mass,
-                com,
-            );
-            // A fixed inertia about the grasp axis: the peak moment is I·α.
-            t = t.replace(
-                &format!("inertia_kg_m2 = {:?}", mass * 0.03 * 0.03),
-                &format!("inertia_kg_m2 = {inertia:?}"),
-            );
-            t + &format!(
-                "[[task]]\nkind = \"twist\"\nstart_s = 0.2\nend_s = 1.2\n\
-                 angular_accel_rad_s2 = {:?}\n\n[controller]\nmu = {believed:?}\n",
-                moment / inertia
-            )
-        }
-        "mu-mismatch" => {
-            let mass = r.random_range(0.05..=0.4);
-            let com = r.random_range(0.0..=0.015);
-            let accel = r.random_range(1.0..=4.0);
-            let ratio = r.random_range(0.7..=1.3);
-            let sensor = index % 2 == 1;
-            let mut effects = vec!["gravity", "sensor_noise"];
-            if sensor {
-                effects.push("slip_sensor");
-            }
-            header(f, 1.2, scene_seed, &effects, believed * ratio, mass, com)
-                + &lift(0.1, 0.6, accel)
-                + &format!("[controller]\nmu = {believed:?}\n")
-        }
-        "faults" => {
-            let mass = r.random_range(0.05..=0.4);
-            let com = r.random_range(0.0..=0.015);
-            let accel = r.random_range(1.0..=4.0);
-            let noise = r.random_range(0.01..=0.05);
-            let dropout = r.random_range(0.0..=0.02);
-            let nan = r.random_range(0.0..=0.01);
-            let delay = r.random_range(0..=3u32);
-            let flip = r.random_range(0.0..=0.02);
-            let trunc = r.random_range(0.0..=0.01);
-            let drop = r.random_range(0.0..=0.02);
-            header(
-                f,
-                1.2,
-                scene_seed,
-                &[
-                    "gravity",
-                    "sensor_noise",
-                    "sensor_faults",
-                    "link_latency",
-                    "link_faults",
-                ],
-                believed,
-                mass,
-                com,
-            ) + &lift(0.1, 0.6, accel)
-                + &format!(
-                    "[effect.sensor_noise]\nforce_sd_n = {noise:?}\nnormal_sd_n = {noise:?}\n\n\
-                     [effect.sensor_faults]\ndropout_prob = {dropout:?}\nnan_prob = {nan:?}\n\n\
-                     [effect.link_latency]\ndelay_ticks = {delay}\n\n\
-                     [effect.link_faults]\nbit_flip_prob = {flip:?}\ntruncate_prob = {trunc:?}\n\
-                     drop_prob = {drop:?}\n\n[controller]\nmu = {believed:?}\n"
-                )
-        }
+        "lift-hold" => lift_hold(finger, &mut r, scene_seed),
+        "shake" => shake(finger, &mut r, scene_seed),
+        "twist" => twist(finger, &mut r, scene_seed),
+        "mu-mismatch" => mu_mismatch(finger, &mut r, scene_seed, index),
+        "faults" => faults(finger, &mut r, scene_seed),
         _ => return None,
     };
     let mut scene = Scene::parse(&text).ok()?;
@@ -285,4 +174,134 @@ pub fn trial_on(finger: &BenchFinger, family: &str, seed: u64, index: usize) -> 
         scene,
         text,
     })
+}
+
+/// A `lift-hold` trial's scene text, drawn from `r`.
+fn lift_hold(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
+    let believed = f.mu;
+    let mass = r.random_range(0.05..=0.5);
+    let com = r.random_range(0.0..=0.02);
+    let accel = r.random_range(1.0..=5.0);
+    header(
+        f,
+        1.2,
+        scene_seed,
+        &["gravity", "sensor_noise"],
+        believed,
+        mass,
+        com,
+    ) + &lift(0.1, 0.6, accel)
+        + &format!("[controller]\nmu = {believed:?}\n")
+}
+
+/// A `shake` trial's scene text, drawn from `r`.
+fn shake(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
+    let believed = f.mu;
+    let mass = r.random_range(0.05..=0.3);
+    let com = r.random_range(0.0..=0.01);
+    let freq = r.random_range(2.0..=8.0);
+    let amp = r.random_range(2.0..=10.0);
+    let tau = r.random_range(0.005..=0.03);
+    let slew = r.random_range(100.0..=500.0);
+    header(
+        f,
+        1.5,
+        scene_seed,
+        &["gravity", "sensor_noise", "actuator"],
+        believed,
+        mass,
+        com,
+    ) + &lift(0.05, 0.45, 2.0)
+        + &format!(
+            "[[task]]\nkind = \"shake\"\nstart_s = 0.5\nend_s = 1.5\n\
+             amplitude_m_s2 = {amp:?}\nfrequency_hz = {freq:?}\n\n\
+             [effect.actuator]\ntime_constant_s = {tau:?}\nslew_n_per_s = {slew:?}\n\
+             max_force_n = {N_MAX_N:?}\n\n\
+             [controller]\nmu = {believed:?}\nactuator_lag_s = {tau:?}\n\
+             actuator_slew_n_per_s = {slew:?}\n"
+        )
+}
+
+/// A `twist` trial's scene text, drawn from `r`.
+fn twist(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
+    let believed = f.mu;
+    let mass = r.random_range(0.02..=0.15);
+    let com = r.random_range(0.0..=0.005);
+    let share = r.random_range(0.05..=1.0);
+    let inertia = 2e-4;
+    let moment = share * grasp_torsion_capacity_nm(f, N_MAX_N);
+    let mut t = header(
+        f,
+        1.3,
+        scene_seed,
+        &["gravity", "sensor_noise"],
+        believed,
+        mass,
+        com,
+    );
+    // A fixed inertia about the grasp axis: the peak moment is I·α.
+    t = t.replace(
+        &format!("inertia_kg_m2 = {:?}", mass * 0.03 * 0.03),
+        &format!("inertia_kg_m2 = {inertia:?}"),
+    );
+    t + &format!(
+        "[[task]]\nkind = \"twist\"\nstart_s = 0.2\nend_s = 1.2\n\
+         angular_accel_rad_s2 = {:?}\n\n[controller]\nmu = {believed:?}\n",
+        moment / inertia
+    )
+}
+
+/// A `mu-mismatch` trial's scene text, drawn from `r`; trial `index` lists the slip
+/// sensor when odd.
+fn mu_mismatch(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64, index: usize) -> String {
+    let believed = f.mu;
+    let mass = r.random_range(0.05..=0.4);
+    let com = r.random_range(0.0..=0.015);
+    let accel = r.random_range(1.0..=4.0);
+    let ratio = r.random_range(0.7..=1.3);
+    let sensor = index % 2 == 1;
+    let mut effects = vec!["gravity", "sensor_noise"];
+    if sensor {
+        effects.push("slip_sensor");
+    }
+    header(f, 1.2, scene_seed, &effects, believed * ratio, mass, com)
+        + &lift(0.1, 0.6, accel)
+        + &format!("[controller]\nmu = {believed:?}\n")
+}
+
+/// A `faults` trial's scene text, drawn from `r`.
+fn faults(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
+    let believed = f.mu;
+    let mass = r.random_range(0.05..=0.4);
+    let com = r.random_range(0.0..=0.015);
+    let accel = r.random_range(1.0..=4.0);
+    let noise = r.random_range(0.01..=0.05);
+    let dropout = r.random_range(0.0..=0.02);
+    let nan = r.random_range(0.0..=0.01);
+    let delay = r.random_range(0..=3u32);
+    let flip = r.random_range(0.0..=0.02);
+    let trunc = r.random_range(0.0..=0.01);
+    let drop = r.random_range(0.0..=0.02);
+    header(
+        f,
+        1.2,
+        scene_seed,
+        &[
+            "gravity",
+            "sensor_noise",
+            "sensor_faults",
+            "link_latency",
+            "link_faults",
+        ],
+        believed,
+        mass,
+        com,
+    ) + &lift(0.1, 0.6, accel)
+        + &format!(
+            "[effect.sensor_noise]\nforce_sd_n = {noise:?}\nnormal_sd_n = {noise:?}\n\n\
+             [effect.sensor_faults]\ndropout_prob = {dropout:?}\nnan_prob = {nan:?}\n\n\
+             [effect.link_latency]\ndelay_ticks = {delay}\n\n\
+             [effect.link_faults]\nbit_flip_prob = {flip:?}\ntruncate_prob = {trunc:?}\n\
+             drop_prob = {drop:?}\n\n[controller]\nmu = {believed:?}\n"
+        )
 }

@@ -7,8 +7,10 @@
 //! - [`sweep`]: the controllers' knobs, one trial's runs, the summary rows;
 //! - [`report`]: text tables and `bench.json`; [`plot`]: the Pareto plots.
 //!
-//! Trials run in parallel (rayon), each run without per-tick samples (unless `--trace`),
-//! softgrip on the direct in-memory link by default.
+//! Trials run in parallel (rayon), each run without per-tick samples (unless asked for
+//! traces), softgrip on the direct in-memory link. [`run`] is the whole bench on plain
+//! options ([`BenchOptions`]); the command `host-sim bench` (`cmd::bench`) parses its
+//! arguments into them.
 
 pub mod families;
 pub mod oracle;
@@ -16,64 +18,92 @@ pub mod plot;
 pub mod report;
 pub mod sweep;
 
+use crate::finger_file::FingerFile;
 use crate::sim::controllers::LinkKind;
-use crate::sim::run::{self, RunOptions};
-use crate::CliError;
-use clap::Args;
+use crate::sim::finger::FingerModel;
+use crate::sim::run::{self as sim_run, RunOptions};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
+use std::fmt;
 use std::path::{Path, PathBuf};
-use sweep::{Row, Sweep, TrialResult, SWEEPS};
+use sweep::{Row, Sweep, TrialResult};
 
-/// Arguments of `host-sim bench`.
-#[derive(Debug, Args)]
-pub struct BenchArgs {
-    /// A family (lift-hold, shake, twist, mu-mismatch, faults) or all.
-    #[arg(long, default_value = "all")]
-    pub family: String,
-    /// Trials per family.
-    #[arg(long, default_value_t = 200)]
-    pub trials: usize,
-    /// Seed of the trials.
-    #[arg(long, default_value_t = 17)]
-    pub seed: u64,
-    /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
-    /// slip-servo) or all.
-    #[arg(long, default_value = "all")]
-    pub controller: String,
-    /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
-    #[arg(long, default_value = "bench-out")]
-    pub out: PathBuf,
-    /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
-    /// sample of trials also runs over the pseudo-terminal and must give identical
-    /// results).
-    #[arg(long, default_value = "direct")]
-    pub link: String,
-    /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
-    #[arg(long)]
-    pub trace: bool,
-    /// No progress bar.
-    #[arg(long)]
-    pub quiet: bool,
-    /// A finger file (`host-sim calibrate --out`'s, or a scene): every trial's finger and
-    /// the μ every controller believes (a scene's [controller] mu if set); default the
-    /// shipped scenes' finger. The limit-surface finger only.
-    #[arg(long)]
-    pub finger: Option<PathBuf>,
+/// Trials per family that a pty check ([`BenchLink::Pty`]) also runs over the pty and
+/// compares.
+pub const PTY_SAMPLE: usize = 3;
+
+/// softgrip's link in a bench run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BenchLink {
+    /// In memory, on the calling thread.
+    Direct,
+    /// Direct, and a sample of trials ([`PTY_SAMPLE`] per family) also over the
+    /// pseudo-terminal, which must give identical results.
+    Pty,
 }
 
-/// The finger of `--finger`, or the default.
-fn bench_finger(args: &BenchArgs) -> Result<families::BenchFinger, CliError> {
-    let Some(path) = &args.finger else {
-        return Ok(families::BenchFinger::default());
-    };
-    let file = crate::finger_file::FingerFile::load(path, "--finger")?;
+impl BenchLink {
+    /// The name `bench.json` records.
+    pub fn name(self) -> &'static str {
+        match self {
+            BenchLink::Direct => "direct",
+            BenchLink::Pty => "pty",
+        }
+    }
+}
+
+/// What a bench run does and where it writes.
+#[derive(Debug, Clone)]
+pub struct BenchOptions {
+    /// The families, in order (of [`families::NAMES`]).
+    pub families: Vec<&'static str>,
+    /// The controllers, each swept over its knob.
+    pub sweeps: Vec<Sweep>,
+    /// Every trial's finger, and the μ every controller believes.
+    pub finger: families::BenchFinger,
+    /// Trials per family (at least 1).
+    pub trials: usize,
+    /// Seed of the trials.
+    pub seed: u64,
+    /// softgrip's link.
+    pub link: BenchLink,
+    /// Output directory: `bench.json`, `trials-FAMILY.csv`, `pareto-FAMILY.svg/.png`,
+    /// `trace/`.
+    pub out: PathBuf,
+    /// Keep and write every run's per-tick samples (CSV under `OUT/trace/FAMILY/`).
+    pub trace: bool,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// Why a bench run failed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum BenchError {
+    /// A file or directory under the output directory could not be written (the path
+    /// and the reason).
+    Write(String),
+    /// A trial could not be built or run, the pty check failed, or a plot failed.
+    Run(String),
+}
+
+impl fmt::Display for BenchError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BenchError::Write(e) | BenchError::Run(e) => f.write_str(e),
+        }
+    }
+}
+
+impl std::error::Error for BenchError {}
+
+/// The bench's finger from a finger file (`calibrate --out`'s, or a scene): its shape,
+/// pressure exponent and contact law, and the μ every controller believes; or why no
+/// trial can run on it (the limit-surface finger only; a value out of range names its
+/// key).
+pub fn finger_from_file(file: &FingerFile) -> Result<families::BenchFinger, String> {
     let g = &file.finger;
-    if g.model != crate::sim::finger::FingerModel::Fls {
-        return Err(CliError::Usage(format!(
-            "--finger: {}: bench runs the limit-surface finger (model = \"fls\")",
-            path.display()
-        )));
+    if g.model != FingerModel::Fls {
+        return Err("bench runs the limit-surface finger (model = \"fls\")".into());
     }
     let finger = families::BenchFinger {
         shape: g.shape,
@@ -84,55 +114,97 @@ fn bench_finger(args: &BenchArgs) -> Result<families::BenchFinger, CliError> {
         half_length_m: g.half_length_m,
     };
     // A finger no scene accepts is refused here, naming its key, not as a failed trial.
-    let text = families::trial_on(&finger, families::NAMES[0], 0, 0).map(|t| t.text);
-    if text.is_none() {
-        let why = match families::probe(&finger) {
+    if families::trial_on(&finger, families::NAMES[0], 0, 0).is_none() {
+        return Err(match families::probe(&finger) {
             Err(e) => e,
             Ok(()) => "no trial can be built on it".into(),
-        };
-        return Err(CliError::Usage(format!(
-            "--finger: {}: {why}",
-            path.display()
-        )));
+        });
     }
     Ok(finger)
 }
 
-/// Trials per family that `--link pty` also runs over the pty and compares.
-pub const PTY_SAMPLE: usize = 3;
+/// Runs the bench `opts` describes and writes its files. `show` gets what the terminal
+/// shows, as it comes, the progress bar out of the way: each family's table and
+/// dominance line as the family finishes, and the pty check's outcome.
+pub fn run(opts: &BenchOptions, mut show: impl FnMut(&str)) -> Result<(), BenchError> {
+    let write_err =
+        |p: &Path, e: std::io::Error| BenchError::Write(format!("{}: {e}", p.display()));
+    std::fs::create_dir_all(&opts.out).map_err(|e| write_err(&opts.out, e))?;
+    let total = (opts.trials * opts.families.len()) as u64;
+    let bar = crate::progress::bar(total, "trials", opts.quiet);
+    let mut all: Vec<Row> = Vec::new();
+    let mut dominance = Vec::new();
+    for family in &opts.families {
+        bar.set_message(family.to_string());
+        let rows = bench_family(opts, family, &bar)?;
+        let check = report::dominance(family, &rows);
+        let text = format!(
+            "{}\n{}\n\n",
+            report::family_table(family, &rows),
+            report::dominance_line(&check)
+        );
+        bar.suspend(|| show(&text));
+        dominance.push(check);
+        plot::write_pareto(&opts.out, family, &rows).map_err(BenchError::Run)?;
+        all.extend(rows);
+    }
+    bar.finish_and_clear();
+    if opts.link == BenchLink::Pty {
+        show(&format!(
+            "pty check: the first {PTY_SAMPLE} trials of each family gave identical results \
+             over the pty and the direct link (softgrip, both modes)\n"
+        ));
+    }
+    report::write_json(
+        &opts.out.join("bench.json"),
+        opts.seed,
+        opts.trials,
+        opts.link.name(),
+        &all,
+        &dominance,
+    )
+    .map_err(|e| BenchError::Write(e.to_string()))
+}
 
-/// The families and sweeps an argument list selects.
-pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), CliError> {
-    let families: Vec<&'static str> = if args.family == "all" {
-        families::NAMES.to_vec()
+/// The trials of one family: run (and traced, and checked over the pty, as `opts` asks),
+/// written to `trials-FAMILY.csv`, and summed up in the summary rows.
+fn bench_family(
+    opts: &BenchOptions,
+    family: &str,
+    bar: &ProgressBar,
+) -> Result<Vec<Row>, BenchError> {
+    let trace = if opts.trace {
+        let dir = opts.out.join("trace").join(family);
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| BenchError::Write(format!("{}: {e}", dir.display())))?;
+        Some(dir)
     } else {
-        vec![*families::NAMES
-            .iter()
-            .find(|n| **n == args.family)
-            .ok_or_else(|| {
-                CliError::Usage(format!(
-                    "--family: unknown family \"{}\", expected all or one of {}",
-                    args.family,
-                    families::NAMES.join(", ")
-                ))
-            })?]
+        None
     };
-    let sweeps: Vec<Sweep> = if args.controller == "all" {
-        SWEEPS.to_vec()
-    } else {
-        vec![*SWEEPS
-            .iter()
-            .find(|s| s.controller == args.controller)
-            .ok_or_else(|| {
-                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
-                CliError::Usage(format!(
-                    "--controller: unknown controller \"{}\", expected all or one of {}",
-                    args.controller,
-                    names.join(", ")
-                ))
-            })?]
-    };
-    Ok((families, sweeps))
+    let results = run_family(
+        &opts.finger,
+        family,
+        opts.seed,
+        opts.trials,
+        &opts.sweeps,
+        &LinkKind::Direct,
+        trace.as_deref(),
+        bar,
+    )
+    .map_err(BenchError::Run)?;
+    if opts.link == BenchLink::Pty {
+        check_pty(&opts.finger, family, opts.seed).map_err(BenchError::Run)?;
+    }
+    report::write_trials_csv(
+        &opts.finger,
+        &opts.out.join(format!("trials-{family}.csv")),
+        family,
+        opts.seed,
+        &opts.sweeps,
+        &results,
+    )
+    .map_err(|e| BenchError::Write(e.to_string()))?;
+    Ok(sweep::rows(family, &opts.sweeps, &results))
 }
 
 /// Runs the trials `0..trials` of `family`, in parallel, in index order.
@@ -150,7 +222,7 @@ pub fn run_family(
     let first = families::trial_on(finger, family, seed, 0).ok_or("no such family")?;
     // Every trial of a family has the same finger and force range, so one ground truth
     // serves them all (each trial sets its own true μ).
-    let truth = run::build_truth(&first.scene)?;
+    let truth = sim_run::build_truth(&first.scene)?;
     (0..trials)
         .into_par_iter()
         .map(|i| {
@@ -174,8 +246,8 @@ fn check_pty(finger: &families::BenchFinger, family: &str, seed: u64) -> Result<
                 truth: None,
                 untimed: true,
             };
-            let d = run::run_with(&t.scene, c, &LinkKind::Direct, None, opts)?.summary;
-            let p = run::run_with(&t.scene, c, &LinkKind::InProcess, None, opts)?.summary;
+            let d = sim_run::run_with(&t.scene, c, &LinkKind::Direct, None, opts)?.summary;
+            let p = sim_run::run_with(&t.scene, c, &LinkKind::InProcess, None, opts)?.summary;
             let same = d.dropped == p.dropped
                 && d.slip_events == p.slip_events
                 && d.slip_distance_m.to_bits() == p.slip_distance_m.to_bits()
@@ -190,89 +262,5 @@ fn check_pty(finger: &families::BenchFinger, family: &str, seed: u64) -> Result<
             }
         }
     }
-    Ok(())
-}
-
-/// `host-sim bench`.
-pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
-    let (families, sweeps) = selection(args)?;
-    let finger = bench_finger(args)?;
-    if args.trials == 0 {
-        return Err(CliError::Usage("--trials: must be at least 1".into()));
-    }
-    let pty = match args.link.as_str() {
-        "direct" => false,
-        "pty" => true,
-        other => {
-            return Err(CliError::Usage(format!(
-                "--link: \"{other}\" is not a link, expected direct or pty"
-            )))
-        }
-    };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
-    let bar = crate::progress::bar((args.trials * families.len()) as u64, "trials", args.quiet);
-    let mut all: Vec<Row> = Vec::new();
-    let mut dominance = Vec::new();
-    for family in &families {
-        bar.set_message(family.to_string());
-        let trace = if args.trace {
-            let dir = args.out.join("trace").join(family);
-            std::fs::create_dir_all(&dir)
-                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", dir.display())))?;
-            Some(dir)
-        } else {
-            None
-        };
-        let results = run_family(
-            &finger,
-            family,
-            args.seed,
-            args.trials,
-            &sweeps,
-            &LinkKind::Direct,
-            trace.as_deref(),
-            &bar,
-        )
-        .map_err(CliError::Failed)?;
-        if pty {
-            check_pty(&finger, family, args.seed).map_err(CliError::Failed)?;
-        }
-        report::write_trials_csv(
-            &finger,
-            &args.out.join(format!("trials-{family}.csv")),
-            family,
-            args.seed,
-            &sweeps,
-            &results,
-        )
-        .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
-        let rows = sweep::rows(family, &sweeps, &results);
-        let check = report::dominance(family, &rows);
-        bar.suspend(|| {
-            println!("{}", report::family_table(family, &rows));
-            println!("{}\n", report::dominance_line(&check));
-        });
-        dominance.push(check);
-        plot::write_pareto(&args.out, family, &rows).map_err(CliError::Failed)?;
-        all.extend(rows);
-    }
-    bar.finish_and_clear();
-    if pty {
-        println!(
-            "pty check: the first {PTY_SAMPLE} trials of each family gave identical results \
-             over the pty and the direct link (softgrip, both modes)"
-        );
-    }
-    report::write_json(
-        &args.out.join("bench.json"),
-        args.seed,
-        args.trials,
-        &args.link,
-        &all,
-        &dominance,
-    )
-    .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
-    println!("wrote {}", args.out.display());
     Ok(())
 }

@@ -275,92 +275,79 @@ impl Knob {
 
     /// The rows of this knob's table: a setting's label and its configuration.
     pub fn rows(self, b: &Budget) -> Vec<(String, Variant)> {
+        use MathKind::{Libm, Micromath};
         let both = [false, true];
-        let mut rows = Vec::new();
-        match self {
-            Knob::Order => {
-                for table in both {
-                    for &o in &b.orders {
-                        let v = Variant {
-                            order: o,
-                            ..Variant::default_mode(table)
-                        };
-                        rows.push((format!("order {o}"), v));
-                    }
-                }
-            }
-            Knob::Samples => {
-                for &s in &b.samples {
-                    let v = Variant {
-                        samples: s,
-                        ..Variant::default_mode(true)
-                    };
-                    rows.push((format!("{s} samples"), v));
-                }
-            }
-            Knob::Aspects => {
-                for &a in &b.aspects {
-                    let v = Variant {
-                        aspects: a,
-                        ..Variant::default_mode(true)
-                    };
-                    rows.push((format!("{a} aspects"), v));
-                }
-            }
-            Knob::Nodes => {
-                for table in both {
-                    for &n in &b.nodes {
-                        let v = Variant {
-                            nodes: n,
-                            ..Variant::default_mode(table)
-                        };
-                        rows.push((format!("{n} nodes"), v));
-                    }
-                }
-            }
-            Knob::Precision => {
-                for table in both {
-                    for p in [Precision::F32, Precision::F64Precompute, Precision::F64] {
-                        let v = Variant {
-                            engine: Engine::Grid {
-                                table,
-                                precision: p,
-                                math: MathKind::Libm,
-                            },
-                            ..Variant::default_mode(table)
-                        };
-                        rows.push((p.label().to_string(), v));
-                    }
-                }
-            }
-            Knob::Math => {
-                for table in both {
-                    for (name, m) in [("libm", MathKind::Libm), ("micromath", MathKind::Micromath)]
-                    {
-                        let v = Variant {
-                            engine: Engine::Grid {
-                                table,
-                                precision: Precision::F32,
-                                math: m,
-                            },
-                            ..Variant::default_mode(table)
-                        };
-                        rows.push((name.to_string(), v));
-                    }
-                }
-            }
-            Knob::Rule => {
-                rows.push(("ellipse (Eq. 10)".into(), Variant::default_mode(false)));
-                rows.push(("table (chords)".into(), Variant::default_mode(true)));
-                rows.push((
+        let rows = match self {
+            Knob::Order => setting_rows(&both, &b.orders, |o, v| {
+                (format!("order {o}"), Variant { order: o, ..v })
+            }),
+            Knob::Samples => setting_rows(&[true], &b.samples, |s, v| {
+                (format!("{s} samples"), Variant { samples: s, ..v })
+            }),
+            Knob::Aspects => setting_rows(&[true], &b.aspects, |a, v| {
+                (format!("{a} aspects"), Variant { aspects: a, ..v })
+            }),
+            Knob::Nodes => setting_rows(&both, &b.nodes, |n, v| {
+                (format!("{n} nodes"), Variant { nodes: n, ..v })
+            }),
+            Knob::Precision => engine_rows(
+                [Precision::F32, Precision::F64Precompute, Precision::F64]
+                    .map(|p| (p.label(), p, Libm)),
+            ),
+            Knob::Math => engine_rows([
+                ("libm", Precision::F32, Libm),
+                ("micromath", Precision::F32, Micromath),
+            ]),
+            Knob::Rule => vec![
+                ("ellipse (Eq. 10)".into(), Variant::default_mode(false)),
+                ("table (chords)".into(), Variant::default_mode(true)),
+                (
                     "exact integration".into(),
                     Variant {
                         engine: Engine::Exact,
                         ..Variant::default_mode(false)
                     },
-                ));
-            }
-        }
+                ),
+            ],
+        };
         rows.into_iter().map(|(s, v)| (s, v.normalised())).collect()
     }
+}
+
+/// A row for each of `values` in each mode of `tables` (false: ellipse, true: table),
+/// mode by mode: `row` labels the value and sets it in the mode's default configuration.
+fn setting_rows(
+    tables: &[bool],
+    values: &[u16],
+    row: impl Fn(u16, Variant) -> (String, Variant),
+) -> Vec<(String, Variant)> {
+    let mut rows = Vec::new();
+    for &table in tables {
+        for &x in values {
+            rows.push(row(x, Variant::default_mode(table)));
+        }
+    }
+    rows
+}
+
+/// A row for each labelled precision and square root of `engines`, in ellipse mode and
+/// then in table mode, the rest of the configuration the mode's default.
+fn engine_rows<const N: usize>(
+    engines: [(&str, Precision, MathKind); N],
+) -> Vec<(String, Variant)> {
+    let mut rows = Vec::new();
+    for table in [false, true] {
+        for (name, precision, math) in engines {
+            let v = Variant {
+                engine: Engine::Grid {
+                    table,
+                    precision,
+                    math,
+                },
+                ..Variant::default_mode(table)
+            };
+            rows.push((name.to_string(), v));
+        }
+    }
+    rows
 }

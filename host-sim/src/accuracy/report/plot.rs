@@ -42,28 +42,68 @@ pub(super) fn x_range(xmin: f64, xmax: f64) -> std::ops::Range<f64> {
     }
 }
 
+/// One configuration in a panel: its number in the Pareto table, its cost (the x), its
+/// force error (the y), and whether it is on this cost's front.
+struct Point<'a> {
+    number: usize,
+    x: f64,
+    err: f64,
+    variant: &'a Variant,
+    on_front: bool,
+}
+
+/// A log-log chart of the SVG backend.
+type LogChart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// One panel of [`plot`]: the force error of the configurations `all` against `cost`.
 pub(super) fn panel(
     area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
     results: &Results,
     all: &[(Variant, Measured, Fronts)],
     cost: Cost,
 ) -> Result<(), String> {
-    let pts: Vec<(usize, f64, f64, &Variant, bool)> = all
+    let pts: Vec<Point<'_>> = all
         .iter()
         .enumerate()
         .filter_map(|(i, (v, m, f))| {
             let x = cost.of(results, v, m)?;
-            Some((i + 1, x.max(1e-3), plot_err(m.error()), v, f.on(cost)))
+            Some(Point {
+                number: i + 1,
+                x: x.max(1e-3),
+                err: plot_err(m.error()),
+                variant: v,
+                on_front: f.on(cost),
+            })
         })
         .collect();
     if pts.is_empty() {
         return Ok(());
     }
+    let mut chart = log_chart(area, cost, &pts)?;
+    draw_front(&mut chart, &pts)?;
+    draw_modes(&mut chart, &pts)?;
+    mark_front(&mut chart, &pts)?;
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+/// The panel's axes: `cost` against the error, log-log, around the points `pts`.
+fn log_chart<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    cost: Cost,
+    pts: &[Point<'_>],
+) -> Result<LogChart<'a, 'b>, String> {
     let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-        (a.min(p.1), b.max(p.1))
+        (a.min(p.x), b.max(p.x))
     });
     let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-        (a.min(p.2), b.max(p.2))
+        (a.min(p.err), b.max(p.err))
     });
     let title = format!("force error against {}", cost.axis());
     let mut chart = ChartBuilder::on(area)
@@ -90,22 +130,39 @@ pub(super) fn panel(
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()
         .map_err(|e| e.to_string())?;
-    let red = RGBColor(214, 39, 40);
-    let mut front: Vec<(f64, f64)> = pts.iter().filter(|p| p.4).map(|p| (p.1, p.2)).collect();
+    Ok(chart)
+}
+
+/// The colour of the Pareto front.
+const FRONT_RED: RGBColor = RGBColor(214, 39, 40);
+
+/// The Pareto front as a red line, with its legend entry.
+fn draw_front(chart: &mut LogChart<'_, '_>, pts: &[Point<'_>]) -> Result<(), String> {
+    let mut front: Vec<(f64, f64)> = pts
+        .iter()
+        .filter(|p| p.on_front)
+        .map(|p| (p.x, p.err))
+        .collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
         .draw_series(std::iter::once(PathElement::new(
             front,
-            ShapeStyle::from(&red).stroke_width(2),
+            ShapeStyle::from(&FRONT_RED).stroke_width(2),
         )))
         .map_err(|e| e.to_string())?
         .label("Pareto front")
         .legend(move |(x, y)| {
             PathElement::new(
                 [(x, y), (x + 20, y)],
-                ShapeStyle::from(&red).stroke_width(2),
+                ShapeStyle::from(&FRONT_RED).stroke_width(2),
             )
         });
+    Ok(())
+}
+
+/// The points as dots in their mode's colour (ellipse, table, exact per tick), a legend
+/// entry for each mode present.
+fn draw_modes(chart: &mut LogChart<'_, '_>, pts: &[Point<'_>]) -> Result<(), String> {
     type Kind = (&'static str, RGBColor, fn(&Variant) -> bool);
     let kinds: [Kind; 3] = [
         ("ellipse", RGBColor(31, 119, 180), |v| {
@@ -119,42 +176,41 @@ pub(super) fn panel(
         }),
     ];
     for (name, colour, is) in kinds {
-        if !pts.iter().any(|p| is(p.3)) {
+        if !pts.iter().any(|p| is(p.variant)) {
             continue;
         }
         let style = ShapeStyle::from(&colour).filled();
         chart
             .draw_series(
                 pts.iter()
-                    .filter(|p| is(p.3))
-                    .map(|p| Circle::new((p.1, p.2), 5, style)),
+                    .filter(|p| is(p.variant))
+                    .map(|p| Circle::new((p.x, p.err), 5, style)),
             )
             .map_err(|e| e.to_string())?
             .label(name)
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, style));
     }
+    Ok(())
+}
+
+/// The Pareto points circled in red and numbered as in the Pareto table.
+fn mark_front(chart: &mut LogChart<'_, '_>, pts: &[Point<'_>]) -> Result<(), String> {
+    let ring = ShapeStyle::from(&FRONT_RED).stroke_width(2);
     chart
         .draw_series(
             pts.iter()
-                .filter(|p| p.4)
-                .map(|p| Circle::new((p.1, p.2), 9, ShapeStyle::from(&red).stroke_width(2))),
+                .filter(|p| p.on_front)
+                .map(|p| Circle::new((p.x, p.err), 9, ring)),
         )
         .map_err(|e| e.to_string())?;
     chart
-        .draw_series(pts.iter().filter(|p| p.4).map(|p| {
+        .draw_series(pts.iter().filter(|p| p.on_front).map(|p| {
             Text::new(
-                format!("{}", p.0),
-                (p.1 * 1.08, p.2 * 1.35),
+                format!("{}", p.number),
+                (p.x * 1.08, p.err * 1.35),
                 ("sans-serif", 13).into_font(),
             )
         }))
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.9))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
         .map_err(|e| e.to_string())?;
     Ok(())
 }

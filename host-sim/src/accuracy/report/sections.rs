@@ -142,6 +142,8 @@ pub(super) fn front_list(
         .join("; ")
 }
 
+/// The Pareto section: the front's definition, every configuration by host tick time
+/// with the fronts it is on, and each front cheapest first.
 pub(super) fn pareto_section(out: &mut String, results: &Results) {
     let target = has_target(results);
     let mut all = fronts(results);
@@ -164,6 +166,14 @@ pub(super) fn pareto_section(out: &mut String, results: &Results) {
         }
     );
     let _ = writeln!(out, "![error against time](accuracy.svg)\n");
+    pareto_table(out, results, &all);
+    front_lists(out, results, &all);
+}
+
+/// The Pareto table: every configuration of `all` (in order), its error and costs, and
+/// the fronts it is on.
+fn pareto_table(out: &mut String, results: &Results, all: &[(Variant, Measured, Fronts)]) {
+    let target = has_target(results);
     out.push_str("| # | configuration | N err | under-ask | tick [ns] | start-up [µs] |");
     if target {
         out.push_str(" M4F tick [instr] | M4F start-up [instr] |");
@@ -199,16 +209,21 @@ pub(super) fn pareto_section(out: &mut String, results: &Results) {
         let _ = writeln!(out, " {} |", f.mark());
     }
     out.push('\n');
+}
+
+/// The tick fronts of `all`, cheapest first (the M4F's when measured), and a note when a
+/// micromath configuration is on one.
+fn front_lists(out: &mut String, results: &Results, all: &[(Variant, Measured, Fronts)]) {
     let _ = writeln!(
         out,
         "The host tick front, cheapest first: {}.\n",
-        front_list(&all, results, Cost::HostTick)
+        front_list(all, results, Cost::HostTick)
     );
-    if target {
+    if has_target(results) {
         let _ = writeln!(
             out,
             "The M4F tick front, cheapest first: {}.\n",
-            front_list(&all, results, Cost::TargetTick)
+            front_list(all, results, Cost::TargetTick)
         );
     }
     let micro_on_front = all.iter().any(|(v, _, f)| {
@@ -232,10 +247,36 @@ pub(super) fn pareto_section(out: &mut String, results: &Results) {
 
 /// The whole `accuracy.md`.
 pub fn markdown(results: &Results) -> String {
-    let h = &results.header;
-    let b = &results.budget;
     let mut out = String::new();
     out.push_str("# What accuracy costs in time\n\n");
+    header_lines(&mut out, results);
+    how_to_read(&mut out, results);
+    summary_section(&mut out, results);
+    for (i, (knob, rows)) in results.sections.iter().enumerate() {
+        let _ = writeln!(out, "## {}. {}\n", i + 1, knob.title());
+        knob_table(&mut out, results, rows);
+        section_notes(&mut out, results, *knob);
+    }
+    pareto_section(&mut out, results);
+    out.push_str("## The defaults, and why\n\n");
+    defaults_text(&mut out, results);
+    brute_section(&mut out, results);
+    target_section(&mut out, results);
+    out.push_str(
+        "## Benchmarks\n\n\
+         Criterion benchmarks of the same costs: `cargo bench --bench fls` (128-point sweeps, \
+         one point per shape, the brute-force point at 6 and 32 cells) and `cargo bench \
+         --bench tick` (ticks per mode, precision and backend; a smooth 1 kHz load; the \
+         start-up precomputation). The tests assert no timings.\n",
+    );
+    out
+}
+
+/// Where, when and how the report was made: machine, date, commit, toolchain, command
+/// and the run's size.
+fn header_lines(out: &mut String, results: &Results) {
+    let h = &results.header;
+    let b = &results.budget;
     let _ = writeln!(
         out,
         "- Machine: {}\n- Date: {}\n- Commit: {}\n- Toolchain: {}\n- Command: `{}`\n- Run: {} \
@@ -253,6 +294,11 @@ pub fn markdown(results: &Results) -> String {
             ""
         }
     );
+}
+
+/// "How to read the tables": the two fingers and every column, with the run's sizes.
+fn how_to_read(out: &mut String, results: &Results) {
+    let b = &results.budget;
     let [rect, disc] = &results.fingers;
     let _ = writeln!(
         out,
@@ -301,25 +347,6 @@ pub fn markdown(results: &Results) -> String {
         b.tick_passes * 256,
         b.rounds,
     );
-    summary_section(&mut out, results);
-    for (i, (knob, rows)) in results.sections.iter().enumerate() {
-        let _ = writeln!(out, "## {}. {}\n", i + 1, knob.title());
-        knob_table(&mut out, results, rows);
-        section_notes(&mut out, results, *knob);
-    }
-    pareto_section(&mut out, results);
-    out.push_str("## The defaults, and why\n\n");
-    defaults_text(&mut out, results);
-    brute_section(&mut out, results);
-    target_section(&mut out, results);
-    out.push_str(
-        "## Benchmarks\n\n\
-         Criterion benchmarks of the same costs: `cargo bench --bench fls` (128-point sweeps, \
-         one point per shape, the brute-force point at 6 and 32 cells) and `cargo bench \
-         --bench tick` (ticks per mode, precision and backend; a smooth 1 kHz load; the \
-         start-up precomputation). The tests assert no timings.\n",
-    );
-    out
 }
 
 pub(super) fn summary_section(out: &mut String, results: &Results) {

@@ -97,8 +97,8 @@ pub(super) fn enough(
     ok.first().copied()
 }
 
+/// The notes under `knob`'s table.
 pub(super) fn section_notes(out: &mut String, results: &Results, knob: Knob) {
-    let d = Variant::default_mode(false);
     match knob {
         Knob::Order => {
             out.push_str(
@@ -107,70 +107,10 @@ pub(super) fn section_notes(out: &mut String, results: &Results, knob: Knob) {
                  than f32 rounding (about 6e-8 relative), whatever the order.\n\n",
             );
         }
-        Knob::Samples => {
-            let floor = results
-                .representation
-                .iter()
-                .find(|r| r.name.ends_with("directions of the exact surface"))
-                .map_or(0.0, |r| r.errors.iter().copied().fold(0.0, f64::max));
-            let _ = writeln!(
-                out,
-                "Table mode only. The controller stores each sweep as its inverse radius at \
-                 {} load directions, read off the sweep's chords; that polygon alone, taken \
-                 through the exact surface, is up to {} away from it radially (section 4's \
-                 representation table). Once the chords are finer than that, more samples \
-                 no longer lower the surface error: the floor is the direction count (a \
-                 constant of the core, `DIRECTIONS`), not the samples.\n",
-                softgrip::controller::DIRECTIONS,
-                sci(floor)
-            );
-        }
+        Knob::Samples => samples_note(out, results),
         Knob::Aspects => {
-            let rows = mode_rows(results, Knob::Aspects, true);
-            let under: Vec<String> = rows
-                .iter()
-                .map(|(v, m)| format!("{} at {} aspects", sci(m.under_ask), v.aspects))
-                .collect();
-            let sign = if rows.iter().any(|(_, m)| m.under_ask > 0.0) {
-                format!("as the under-ask column shows: {}", under.join(", "))
-            } else {
-                "though over this run's loads it never asked for less force than the exact \
-                 surface: the under-ask column is 0 at every grid size"
-                    .to_string()
-            };
-            let _ = writeln!(
-                out,
-                "Table mode on the rectangle (the disc has one shape). The controller \
-                 interpolates the stored surfaces linearly in `ln(l/a)` between the grid's \
-                 aspects. That interpolation is table mode's one error whose sign is not \
-                 guaranteed (the chords and the arm interpolation only overstate the \
-                 force), {sign}.\n"
-            );
-            let _ = writeln!(
-                out,
-                "The controller's pitch is exact at every force node, so the aspect grid does \
-                 not touch it. The core's own `AspectGrid` instead interpolates the pitch \
-                 too, linearly in `ln(pitch)` against `ln(l/a)`; measured on its own (f64, \
-                 48 samples, order {}) over the rectangle's aspect range, at {} aspects \
-                 between its entries:\n",
-                d.order,
-                if results.budget.quick { 9 } else { 29 }
-            );
-            out.push_str(
-                "| aspects | pitch err (log-log) | surface err | build [µs] |\n\
-                 | --- | --- | --- | --- |\n",
-            );
-            for r in &results.aspect_grid {
-                let _ = writeln!(
-                    out,
-                    "| {} | {} | {} | {} |",
-                    r.count,
-                    sci(r.pitch_err),
-                    sci(r.surface_err),
-                    time(r.build_us)
-                );
-            }
-            out.push('\n');
+            aspects_note(out, results);
+            aspect_grid_table(out, results);
         }
         Knob::Nodes => {
             out.push_str(
@@ -181,23 +121,7 @@ pub(super) fn section_notes(out: &mut String, results: &Results, knob: Knob) {
                  and the chord polygon of a sweep, measured radially against the exact \
                  surface on their own (f64, order 28):\n\n",
             );
-            let _ = write!(out, "| representation |");
-            for p in &results.probes {
-                let _ = write!(out, " {p} |");
-            }
-            out.push_str("\n| --- |");
-            for _ in &results.probes {
-                out.push_str(" --- |");
-            }
-            out.push('\n');
-            for r in &results.representation {
-                let _ = write!(out, "| {} |", r.name);
-                for e in &r.errors {
-                    let _ = write!(out, " {} |", sci(*e));
-                }
-                out.push('\n');
-            }
-            out.push('\n');
+            representation_table(out, results);
         }
         Knob::Precision => {
             out.push_str(
@@ -225,6 +149,102 @@ pub(super) fn section_notes(out: &mut String, results: &Results, knob: Knob) {
             );
         }
     }
+}
+
+/// The note under the samples knob: the direction count, not the samples, is the floor.
+fn samples_note(out: &mut String, results: &Results) {
+    let floor = results
+        .representation
+        .iter()
+        .find(|r| r.name.ends_with("directions of the exact surface"))
+        .map_or(0.0, |r| r.errors.iter().copied().fold(0.0, f64::max));
+    let _ = writeln!(
+        out,
+        "Table mode only. The controller stores each sweep as its inverse radius at \
+         {} load directions, read off the sweep's chords; that polygon alone, taken \
+         through the exact surface, is up to {} away from it radially (section 4's \
+         representation table). Once the chords are finer than that, more samples \
+         no longer lower the surface error: the floor is the direction count (a \
+         constant of the core, `DIRECTIONS`), not the samples.\n",
+        softgrip::controller::DIRECTIONS,
+        sci(floor)
+    );
+}
+
+/// The note under the aspects knob: the one error of table mode whose sign is not
+/// guaranteed, and what the grid does not touch.
+fn aspects_note(out: &mut String, results: &Results) {
+    let rows = mode_rows(results, Knob::Aspects, true);
+    let under: Vec<String> = rows
+        .iter()
+        .map(|(v, m)| format!("{} at {} aspects", sci(m.under_ask), v.aspects))
+        .collect();
+    let sign = if rows.iter().any(|(_, m)| m.under_ask > 0.0) {
+        format!("as the under-ask column shows: {}", under.join(", "))
+    } else {
+        "though over this run's loads it never asked for less force than the exact \
+         surface: the under-ask column is 0 at every grid size"
+            .to_string()
+    };
+    let _ = writeln!(
+        out,
+        "Table mode on the rectangle (the disc has one shape). The controller \
+         interpolates the stored surfaces linearly in `ln(l/a)` between the grid's \
+         aspects. That interpolation is table mode's one error whose sign is not \
+         guaranteed (the chords and the arm interpolation only overstate the \
+         force), {sign}.\n"
+    );
+}
+
+/// The core's own `AspectGrid` measured on its own, with its introduction.
+fn aspect_grid_table(out: &mut String, results: &Results) {
+    let d = Variant::default_mode(false);
+    let _ = writeln!(
+        out,
+        "The controller's pitch is exact at every force node, so the aspect grid does \
+         not touch it. The core's own `AspectGrid` instead interpolates the pitch \
+         too, linearly in `ln(pitch)` against `ln(l/a)`; measured on its own (f64, \
+         48 samples, order {}) over the rectangle's aspect range, at {} aspects \
+         between its entries:\n",
+        d.order,
+        if results.budget.quick { 9 } else { 29 }
+    );
+    out.push_str(
+        "| aspects | pitch err (log-log) | surface err | build [µs] |\n\
+         | --- | --- | --- | --- |\n",
+    );
+    for r in &results.aspect_grid {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} |",
+            r.count,
+            sci(r.pitch_err),
+            sci(r.surface_err),
+            time(r.build_us)
+        );
+    }
+    out.push('\n');
+}
+
+/// The surface representations' radial errors, one row each, a column per probe.
+fn representation_table(out: &mut String, results: &Results) {
+    let _ = write!(out, "| representation |");
+    for p in &results.probes {
+        let _ = write!(out, " {p} |");
+    }
+    out.push_str("\n| --- |");
+    for _ in &results.probes {
+        out.push_str(" --- |");
+    }
+    out.push('\n');
+    for r in &results.representation {
+        let _ = write!(out, "| {} |", r.name);
+        for e in &r.errors {
+            let _ = write!(out, " {} |", sci(*e));
+        }
+        out.push('\n');
+    }
+    out.push('\n');
 }
 
 pub(super) fn target_cost(results: &Results, v: &Variant) -> Option<super::target::TargetCost> {

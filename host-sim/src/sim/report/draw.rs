@@ -80,6 +80,13 @@ pub(super) fn segments(points: impl Iterator<Item = Option<(f64, f64)>>) -> Vec<
 /// The area one plot is drawn on.
 pub(super) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
+/// A chart with two `f64` axes on the SVG backend.
+pub(super) type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
 /// Renders into an SVG string, then writes it to `path` (so that file errors come back as
 /// [`ReportError::Io`] and drawing errors as [`ReportError::Plot`]). The canvas is
 /// `plot_size` plus a legend panel of `legend_w` pixels on the right; `draw` gets the plot

@@ -103,51 +103,13 @@ pub fn plot_force_with_slips(
     runs: &[(&str, &[Sample])],
     slips: &[Vec<(f64, f64)>],
 ) -> Result<(), ReportError> {
-    let finite_t = || {
-        runs.iter()
-            .flat_map(|(_, s)| s.iter().map(|s| s.t_s))
-            .filter(|t| t.is_finite())
-    };
-    let t_min = finite_t().fold(f64::INFINITY, f64::min);
-    let t_max = finite_t().fold(f64::NEG_INFINITY, f64::max);
-    let (t_min, t_max) = if t_min.is_finite() && t_max > t_min {
-        (t_min, t_max)
-    } else if t_min.is_finite() {
-        (t_min, t_min + 1.0)
-    } else {
-        (0.0, 1.0)
-    };
-
-    let slipped = |i: usize| slips.get(i).is_some_and(|v| !v.is_empty());
-    let any_held = (0..runs.len()).any(|i| !slipped(i));
-    let forces = runs
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| !any_held || !slipped(*i))
-        .flat_map(|(_, (_, s))| s.iter().map(|s| s.n_true_n))
-        .chain(
-            runs.first()
-                .into_iter()
-                .flat_map(|(_, s)| s.iter().map(|s| s.ft_n)),
-        )
-        .filter(|f| f.is_finite());
-    let (f_min, f_max) = forces.fold((0.0_f64, 0.0_f64), |(lo, hi), f| (lo.min(f), hi.max(f)));
-    let y_max = if f_max > 0.0 { 1.1 * f_max } else { 1.0 };
-    let y_min = 1.1 * f_min;
-
-    let lanes: Vec<usize> = (0..runs.len()).filter(|&i| slipped(i)).collect();
-    let clipped: Vec<bool> = runs
-        .iter()
-        .map(|(_, s)| {
-            s.iter()
-                .any(|s| s.n_true_n.is_finite() && s.n_true_n > y_max)
-        })
+    let times = time_range(runs);
+    let slipped: Vec<bool> = (0..runs.len())
+        .map(|i| slips.get(i).is_some_and(|v| !v.is_empty()))
         .collect();
-    let labels: Vec<String> = runs
-        .iter()
-        .zip(&clipped)
-        .map(|((name, _), &c)| format!("{name}{}", if c { CLIPPED_SUFFIX } else { "" }))
-        .collect();
+    let (y_min, y_max) = force_range(runs, &slipped);
+    let lanes: Vec<usize> = (0..runs.len()).filter(|&i| slipped[i]).collect();
+    let labels = run_labels(runs, y_max);
     let legend_w = legend_width(
         [SLIP_LANE_LABEL, LOAD_LABEL]
             .into_iter()
@@ -163,89 +125,171 @@ pub fn plot_force_with_slips(
         (1000, 600 + lanes_px),
         legend_w,
         |root, legend_area| {
-            let mut legend: Vec<(String, Swatch)> = Vec::new();
             let (top, bottom) = root.split_vertically(600);
             let mut chart = ChartBuilder::on(&top)
                 .caption(title, ("sans-serif", 22))
                 .margin(15)
                 .x_label_area_size(45)
                 .y_label_area_size(60)
-                .build_cartesian_2d(t_min..t_max, y_min..y_max)?;
+                .build_cartesian_2d(times.0..times.1, y_min..y_max)?;
             chart
                 .configure_mesh()
                 .x_desc("time [s]")
                 .y_desc("force [N]")
                 .draw()?;
-
-            let mut load_legend = None;
-            if let Some((_, samples)) = runs.first() {
-                let style = ShapeStyle::from(&LOAD_GREY).stroke_width(1);
-                let segs =
-                    segments(samples.iter().map(|s| {
-                        (s.t_s.is_finite() && s.ft_n.is_finite()).then_some((s.t_s, s.ft_n))
-                    }));
-                chart.draw_series(segs.into_iter().map(|seg| {
-                    DashedPathElement::new(decimate_min_max(&seg, MAX_LINE_POINTS), 6, 4, style)
-                }))?;
-                load_legend = Some((LOAD_LABEL.into(), Swatch::Dashed(style)));
-            }
-
-            for (i, (_, samples)) in runs.iter().enumerate() {
-                let colour = run_colour(i);
-                let style = ShapeStyle::from(&colour).stroke_width(2);
-                let segs = segments(samples.iter().map(|s| {
-                    (s.t_s.is_finite() && s.n_true_n.is_finite()).then_some((s.t_s, s.n_true_n))
-                }));
-                let mut exits = Vec::new();
-                for seg in segs {
-                    let (parts, out) = clip_above(&decimate_min_max(&seg, MAX_LINE_POINTS), y_max);
-                    chart.draw_series(parts.into_iter().map(|p| PathElement::new(p, style)))?;
-                    exits.extend(out);
-                }
-                chart.draw_series(
-                    stride(&exits, MAX_SLIP_MARKERS)
-                        .into_iter()
-                        .map(|(t, y)| TriangleMarker::new((t, y), 6, colour.filled())),
-                )?;
-                legend.push((labels[i].clone(), Swatch::Line(style)));
-            }
+            let load_legend = match runs.first() {
+                Some((_, samples)) => Some(draw_load(&mut chart, samples)?),
+                None => None,
+            };
+            let mut legend = draw_runs(&mut chart, runs, &labels, y_max)?;
             legend.extend(load_legend);
-
-            // The slip lanes: one row per run that slipped, bars over its slip intervals.
             if !lanes.is_empty() {
-                let n = lanes.len();
-                let names: Vec<String> = lanes.iter().map(|&i| runs[i].0.to_string()).collect();
-                let mut lane_chart = ChartBuilder::on(&bottom)
-                    .margin_left(15)
-                    .margin_right(15)
-                    .margin_bottom(10)
-                    .x_label_area_size(30)
-                    .y_label_area_size(60)
-                    .build_cartesian_2d(t_min..t_max, 0.0..n as f64)?;
-                lane_chart
-                    .configure_mesh()
-                    .disable_y_mesh()
-                    .y_labels(0)
-                    .x_desc("time [s]; bars: the intervals in which each run slips")
-                    .draw()?;
-                let merge_gap = (t_max - t_min) / 1000.0;
-                for (row, &i) in lanes.iter().enumerate() {
-                    let y = (n - row) as f64 - 0.5;
-                    let bar = run_colour(i).filled();
-                    let intervals = merge_intervals(&slips[i], merge_gap);
-                    lane_chart.draw_series(intervals.into_iter().map(|(t0, t1)| {
-                        Rectangle::new([(t0.max(t_min), y - 0.3), (t1.min(t_max), y + 0.3)], bar)
-                    }))?;
-                    let font = TextStyle::from(("sans-serif", 12).into_font())
-                        .pos(Pos::new(HPos::Right, VPos::Center));
-                    lane_chart.draw_series(std::iter::once(
-                        EmptyElement::at((t_min, y)) + Text::new(names[row].clone(), (-6, 0), font),
-                    ))?;
-                }
+                draw_slip_lanes(&bottom, runs, slips, &lanes, times)?;
                 let first = run_colour(lanes[0]).filled();
                 legend.push((SLIP_LANE_LABEL.into(), Swatch::Shade(first)));
             }
             draw_legend(legend_area, &legend)
         },
     )
+}
+
+/// The time axis [s]: the runs' finite times, at least one second wide if they span none.
+fn time_range(runs: &[(&str, &[Sample])]) -> (f64, f64) {
+    let finite_t = || {
+        runs.iter()
+            .flat_map(|(_, s)| s.iter().map(|s| s.t_s))
+            .filter(|t| t.is_finite())
+    };
+    let t_min = finite_t().fold(f64::INFINITY, f64::min);
+    let t_max = finite_t().fold(f64::NEG_INFINITY, f64::max);
+    if t_min.is_finite() && t_max > t_min {
+        (t_min, t_max)
+    } else if t_min.is_finite() {
+        (t_min, t_min + 1.0)
+    } else {
+        (0.0, 1.0)
+    }
+}
+
+/// The force axis [N]: 10 % beyond the normal forces of the runs that never slipped (of
+/// all runs when every run `slipped`) and the first run's load, and beyond zero.
+fn force_range(runs: &[(&str, &[Sample])], slipped: &[bool]) -> (f64, f64) {
+    let any_held = slipped.iter().any(|s| !s);
+    let forces = runs
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !any_held || !slipped[*i])
+        .flat_map(|(_, (_, s))| s.iter().map(|s| s.n_true_n))
+        .chain(
+            runs.first()
+                .into_iter()
+                .flat_map(|(_, s)| s.iter().map(|s| s.ft_n)),
+        )
+        .filter(|f| f.is_finite());
+    let (f_min, f_max) = forces.fold((0.0_f64, 0.0_f64), |(lo, hi), f| (lo.min(f), hi.max(f)));
+    let y_max = if f_max > 0.0 { 1.1 * f_max } else { 1.0 };
+    (1.1 * f_min, y_max)
+}
+
+/// Each run's legend label, which says so when its force leaves the top `y_max` [N].
+fn run_labels(runs: &[(&str, &[Sample])], y_max: f64) -> Vec<String> {
+    runs.iter()
+        .map(|(name, s)| {
+            let clipped = s
+                .iter()
+                .any(|s| s.n_true_n.is_finite() && s.n_true_n > y_max);
+            format!("{name}{}", if clipped { CLIPPED_SUFFIX } else { "" })
+        })
+        .collect()
+}
+
+/// The tangential load of `samples`, grey and dashed; its legend entry.
+fn draw_load(
+    chart: &mut Chart<'_, '_>,
+    samples: &[Sample],
+) -> Result<(String, Swatch), ReportError> {
+    let style = ShapeStyle::from(&LOAD_GREY).stroke_width(1);
+    let segs = segments(
+        samples
+            .iter()
+            .map(|s| (s.t_s.is_finite() && s.ft_n.is_finite()).then_some((s.t_s, s.ft_n))),
+    );
+    chart.draw_series(
+        segs.into_iter().map(|seg| {
+            DashedPathElement::new(decimate_min_max(&seg, MAX_LINE_POINTS), 6, 4, style)
+        }),
+    )?;
+    Ok((LOAD_LABEL.into(), Swatch::Dashed(style)))
+}
+
+/// Each run's normal force in its colour, cut at `y_max` [N] with a ▲ where it leaves the
+/// top; their legend entries (`labels`).
+fn draw_runs(
+    chart: &mut Chart<'_, '_>,
+    runs: &[(&str, &[Sample])],
+    labels: &[String],
+    y_max: f64,
+) -> Result<Vec<(String, Swatch)>, ReportError> {
+    let mut legend = Vec::new();
+    for (i, (_, samples)) in runs.iter().enumerate() {
+        let colour = run_colour(i);
+        let style = ShapeStyle::from(&colour).stroke_width(2);
+        let segs =
+            segments(samples.iter().map(|s| {
+                (s.t_s.is_finite() && s.n_true_n.is_finite()).then_some((s.t_s, s.n_true_n))
+            }));
+        let mut exits = Vec::new();
+        for seg in segs {
+            let (parts, out) = clip_above(&decimate_min_max(&seg, MAX_LINE_POINTS), y_max);
+            chart.draw_series(parts.into_iter().map(|p| PathElement::new(p, style)))?;
+            exits.extend(out);
+        }
+        chart.draw_series(
+            stride(&exits, MAX_SLIP_MARKERS)
+                .into_iter()
+                .map(|(t, y)| TriangleMarker::new((t, y), 6, colour.filled())),
+        )?;
+        legend.push((labels[i].clone(), Swatch::Line(style)));
+    }
+    Ok(legend)
+}
+
+/// The slip lanes in `area`: one row per run that slipped (`lanes`, indices into `runs`),
+/// bars over its slip intervals (`slips`) on the time axis `(t_min, t_max)` [s].
+fn draw_slip_lanes(
+    area: &Area<'_>,
+    runs: &[(&str, &[Sample])],
+    slips: &[Vec<(f64, f64)>],
+    lanes: &[usize],
+    (t_min, t_max): (f64, f64),
+) -> Result<(), ReportError> {
+    let n = lanes.len();
+    let mut lane_chart = ChartBuilder::on(area)
+        .margin_left(15)
+        .margin_right(15)
+        .margin_bottom(10)
+        .x_label_area_size(30)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t_min..t_max, 0.0..n as f64)?;
+    lane_chart
+        .configure_mesh()
+        .disable_y_mesh()
+        .y_labels(0)
+        .x_desc("time [s]; bars: the intervals in which each run slips")
+        .draw()?;
+    let merge_gap = (t_max - t_min) / 1000.0;
+    for (row, &i) in lanes.iter().enumerate() {
+        let y = (n - row) as f64 - 0.5;
+        let bar = run_colour(i).filled();
+        let intervals = merge_intervals(&slips[i], merge_gap);
+        lane_chart.draw_series(intervals.into_iter().map(|(t0, t1)| {
+            Rectangle::new([(t0.max(t_min), y - 0.3), (t1.min(t_max), y + 0.3)], bar)
+        }))?;
+        let font = TextStyle::from(("sans-serif", 12).into_font())
+            .pos(Pos::new(HPos::Right, VPos::Center));
+        lane_chart.draw_series(std::iter::once(
+            EmptyElement::at((t_min, y)) + Text::new(runs[i].0.to_string(), (-6, 0), font),
+        ))?;
+    }
+    Ok(())
 }

@@ -151,103 +151,120 @@ pub fn comparison_table(runs: &[RunSummary]) -> String {
     let align = [L, R, R, R, R, R];
     let rows: Vec<Vec<String>> = controllers
         .iter()
-        .map(|&c| {
-            let mine: Vec<&RunSummary> = runs.iter().filter(|r| r.controller == c).collect();
-            let eligible = mine.iter().filter(|r| !r.expected_slip).count();
-            let held_n = mine.iter().filter(|r| !r.expected_slip && held(r)).count();
-            let events: u64 = mine.iter().map(|r| r.slip_events).sum();
-            let dist: f64 = mine.iter().map(|r| r.slip_distance_m).sum();
-            let means: Vec<f64> = mine
-                .iter()
-                .map(|r| r.mean_normal_force_n)
-                .filter(|v| v.is_finite())
-                .collect();
-            let mean_of_mean = if means.is_empty() {
-                f64::NAN
-            } else {
-                means.iter().sum::<f64>() / means.len() as f64
-            };
-            let peak = mine
-                .iter()
-                .map(|r| r.peak_normal_force_n)
-                .filter(|v| v.is_finite())
-                .fold(f64::NAN, f64::max);
-            vec![
-                c.to_string(),
-                format!("{held_n}/{eligible}"),
-                events.to_string(),
-                format!("{:.3}", dist * 1e3),
-                format!("{mean_of_mean:.3}"),
-                format!("{peak:.3}"),
-            ]
-        })
+        .map(|&c| controller_row(c, runs))
         .collect();
     let mut out = render_table(&headers, &align, &rows);
 
     out.push('\n');
     for &scene in &scenes {
-        let here: Vec<&RunSummary> = runs.iter().filter(|r| r.scene == scene).collect();
-        let holders: Vec<&RunSummary> = here.iter().copied().filter(|r| held(r)).collect();
-        let expected_slip = here.iter().any(|r| r.expected_slip);
-        if expected_slip {
-            if holders.is_empty() {
+        out.push_str(&scene_lines(scene, runs));
+    }
+    out
+}
+
+/// The comparison table's row of the controller `c`.
+fn controller_row(c: &str, runs: &[RunSummary]) -> Vec<String> {
+    let mine: Vec<&RunSummary> = runs.iter().filter(|r| r.controller == c).collect();
+    let eligible = mine.iter().filter(|r| !r.expected_slip).count();
+    let held_n = mine.iter().filter(|r| !r.expected_slip && held(r)).count();
+    let events: u64 = mine.iter().map(|r| r.slip_events).sum();
+    let dist: f64 = mine.iter().map(|r| r.slip_distance_m).sum();
+    let means: Vec<f64> = mine
+        .iter()
+        .map(|r| r.mean_normal_force_n)
+        .filter(|v| v.is_finite())
+        .collect();
+    let mean_of_mean = if means.is_empty() {
+        f64::NAN
+    } else {
+        means.iter().sum::<f64>() / means.len() as f64
+    };
+    let peak = mine
+        .iter()
+        .map(|r| r.peak_normal_force_n)
+        .filter(|v| v.is_finite())
+        .fold(f64::NAN, f64::max);
+    vec![
+        c.to_string(),
+        format!("{held_n}/{eligible}"),
+        events.to_string(),
+        format!("{:.3}", dist * 1e3),
+        format!("{mean_of_mean:.3}"),
+        format!("{peak:.3}"),
+    ]
+}
+
+/// The comparison's lines on `scene`: who held it, with the least mean force, and where
+/// a baseline does as well as softgrip or better.
+fn scene_lines(scene: &str, runs: &[RunSummary]) -> String {
+    let here: Vec<&RunSummary> = runs.iter().filter(|r| r.scene == scene).collect();
+    let holders: Vec<&RunSummary> = here.iter().copied().filter(|r| held(r)).collect();
+    if here.iter().any(|r| r.expected_slip) {
+        return overload_line(scene, &holders);
+    }
+    if holders.is_empty() {
+        return format!("scene {scene}: no controller held it\n");
+    }
+    let least = holders
+        .iter()
+        .map(|r| r.mean_normal_force_n)
+        .filter(|v| v.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    let names: Vec<&str> = holders.iter().map(|r| r.controller.as_str()).collect();
+    let best: Vec<&str> = holders
+        .iter()
+        .filter(|r| r.mean_normal_force_n == least)
+        .map(|r| r.controller.as_str())
+        .collect();
+    let mut out = if best.is_empty() {
+        format!(
+            "scene {scene}: held by {}; no finite mean force\n",
+            names.join(", ")
+        )
+    } else {
+        format!(
+            "scene {scene}: held by {}; least mean force: {} ({least:.3} N)\n",
+            names.join(", "),
+            best.join(", ")
+        )
+    };
+    out.push_str(&baseline_lines(scene, &here, &holders));
+    out
+}
+
+/// The comparison's line on the overload `scene`, held by `holders`.
+fn overload_line(scene: &str, holders: &[&RunSummary]) -> String {
+    if holders.is_empty() {
+        return format!("scene {scene} (overload): every controller slipped, as expected\n");
+    }
+    let names: Vec<String> = holders
+        .iter()
+        .map(|r| format!("{} ({:.3} N mean)", r.controller, r.mean_normal_force_n))
+        .collect();
+    format!(
+        "scene {scene} (overload): held by {} — unexpected for an overload\n",
+        names.join(", ")
+    )
+}
+
+/// A line for each baseline among `holders` that held `scene` where a softgrip run of
+/// `here` slipped, or held it with no more mean force.
+fn baseline_lines(scene: &str, here: &[&RunSummary], holders: &[&RunSummary]) -> String {
+    let mut out = String::new();
+    for s in here.iter().filter(|r| is_softgrip(&r.controller)) {
+        for b in holders.iter().filter(|r| !is_softgrip(&r.controller)) {
+            if !held(s) {
                 out.push_str(&format!(
-                    "scene {scene} (overload): every controller slipped, as expected\n"
+                    "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} slipped \
+                     ({} events) — the baseline does better here\n",
+                    b.controller, b.mean_normal_force_n, s.controller, s.slip_events
                 ));
-            } else {
-                let names: Vec<String> = holders
-                    .iter()
-                    .map(|r| format!("{} ({:.3} N mean)", r.controller, r.mean_normal_force_n))
-                    .collect();
+            } else if b.mean_normal_force_n <= s.mean_normal_force_n {
                 out.push_str(&format!(
-                    "scene {scene} (overload): held by {} — unexpected for an overload\n",
-                    names.join(", ")
+                    "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} {:.3} N \
+                     — the baseline does as well here\n",
+                    b.controller, b.mean_normal_force_n, s.controller, s.mean_normal_force_n
                 ));
-            }
-            continue;
-        }
-        if holders.is_empty() {
-            out.push_str(&format!("scene {scene}: no controller held it\n"));
-            continue;
-        }
-        let least = holders
-            .iter()
-            .map(|r| r.mean_normal_force_n)
-            .filter(|v| v.is_finite())
-            .fold(f64::INFINITY, f64::min);
-        let names: Vec<&str> = holders.iter().map(|r| r.controller.as_str()).collect();
-        let best: Vec<&str> = holders
-            .iter()
-            .filter(|r| r.mean_normal_force_n == least)
-            .map(|r| r.controller.as_str())
-            .collect();
-        if best.is_empty() {
-            out.push_str(&format!(
-                "scene {scene}: held by {}; no finite mean force\n",
-                names.join(", ")
-            ));
-        } else {
-            out.push_str(&format!(
-                "scene {scene}: held by {}; least mean force: {} ({least:.3} N)\n",
-                names.join(", "),
-                best.join(", ")
-            ));
-        }
-        for s in here.iter().filter(|r| is_softgrip(&r.controller)) {
-            for b in holders.iter().filter(|r| !is_softgrip(&r.controller)) {
-                if !held(s) {
-                    out.push_str(&format!(
-                        "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} slipped \
-                         ({} events) — the baseline does better here\n",
-                        b.controller, b.mean_normal_force_n, s.controller, s.slip_events
-                    ));
-                } else if b.mean_normal_force_n <= s.mean_normal_force_n {
-                    out.push_str(&format!(
-                        "scene {scene}: baseline \"{}\" held with {:.3} N mean, {} {:.3} N \
-                         — the baseline does as well here\n",
-                        b.controller, b.mean_normal_force_n, s.controller, s.mean_normal_force_n
-                    ));
-                }
             }
         }
     }

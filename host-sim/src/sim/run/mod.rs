@@ -24,36 +24,29 @@
 //! and slip is no longer accumulated.
 //!
 //! softgrip's configuration for a scene, and its errors named by scene key, are in
-//! `run/config.rs` (re-exported here).
+//! `run/config.rs` (re-exported here). The tick itself is `run/lockstep.rs`: stages 1–3
+//! and 5, the plant's step (`run/plant.rs`: the limit surface or the brush finger) and
+//! the statistics accumulator (`run/tally.rs`, with the drop); `run/costs.rs` keeps the
+//! wall-clock accounting.
 
 mod config;
+mod costs;
+mod lockstep;
+mod plant;
+mod tally;
 
 pub use config::*;
+pub use tally::{is_drop, DROP_DISTANCE_M, DROP_ROTATION_RAD};
 
-use crate::brush::BrushPlant;
 use crate::sim::controllers::{self, LinkKind};
-use crate::sim::effects::{LinkFate, World};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::scene::Scene;
-use crate::sim::task;
-use crate::sim::truth::{TrueLoad, Truth};
+use crate::sim::truth::Truth;
 use indicatif::ProgressBar;
+use lockstep::Lockstep;
+use plant::Plant;
 use softgrip::controller::Checked;
-use softgrip::protocol::SensorFrame;
-use std::collections::{BTreeMap, VecDeque};
-use std::time::{Duration, Instant};
-
-/// Slip distance beyond which the object is lost from the grasp [m] (10 mm).
-pub const DROP_DISTANCE_M: f64 = 0.01;
-/// Slip rotation beyond which the object is lost from the grasp [rad].
-pub const DROP_ROTATION_RAD: f64 = 0.2;
-
-/// Whether an object that has slid `slip_distance_m` [m] and turned `slip_rotation_rad`
-/// [rad] relative to the fingertips is dropped: more than [`DROP_DISTANCE_M`] or more
-/// than [`DROP_ROTATION_RAD`]. The only definition of a drop.
-pub fn is_drop(slip_distance_m: f64, slip_rotation_rad: f64) -> bool {
-    slip_distance_m > DROP_DISTANCE_M || slip_rotation_rad.abs() > DROP_ROTATION_RAD
-}
+use std::time::Instant;
 
 /// How a run is carried out beyond its scene and controller.
 #[derive(Debug, Clone, Copy, Default)]
@@ -67,16 +60,6 @@ pub struct RunOptions<'a> {
     /// Skip the wall-clock accounting (`step_cost_share`, `plant_step_s`,
     /// `controller_and_link_s` come out zero): it reads the clock about ten times a tick.
     pub untimed: bool,
-}
-
-/// Reads the clock unless `untimed`.
-fn now(untimed: bool) -> Option<Instant> {
-    (!untimed).then(Instant::now)
-}
-
-/// The time since `start`, zero when untimed.
-fn since(start: Option<Instant>) -> Duration {
-    start.map_or(Duration::ZERO, |s| s.elapsed())
 }
 
 /// A finished run.
@@ -218,8 +201,6 @@ fn run_into(
         .unwrap_or(cfg.fault_force_n);
     let mut pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     pipeline.set_timed(!options.untimed);
-    let untimed = options.untimed;
-    let has_actuator = pipeline.names().iter().any(|n| n == "actuator");
     let built;
     let truth = match options.truth {
         Some(t) => t,
@@ -234,224 +215,41 @@ fn run_into(
             &built
         }
     };
-    let mut ctl = controllers::build(controller, cfg, constant_n, link_kind)?;
+    let ctl = controllers::build(controller, cfg, constant_n, link_kind)?;
     // The brush finger, when the scene's finger is one: its plant replaces the limit
-    // surface and the quasi-static slip accounting below.
-    let mut plant = scene
+    // surface and the quasi-static slip accounting.
+    let brush = scene
         .finger
         .brush_finger()?
         .map(|b| b.plant(scene.object.mass_kg, scene.object.inertia_kg_m2));
+    let plant = Plant::new(truth, brush);
+    let on_surface = !plant.is_brush();
+    let mut run = Lockstep::new(scene, pipeline, ctl, plant, cfg.n_min_n, options.untimed);
 
-    let dt = 1.0 / scene.tick_hz;
     let ticks = (scene.duration_s * scene.tick_hz).round() as u64;
-    let detect_ticks = ((0.01 * scene.tick_hz).ceil() as usize).max(1);
-    let mut w = World {
-        dt_s: dt,
-        mass_kg: scene.object.mass_kg,
-        inertia_kg_m2: scene.object.inertia_kg_m2,
-        com_offset_m: scene.object.com_offset_m,
-        command_n: cfg.n_min_n,
-        normal_n: cfg.n_min_n,
-        ..World::default()
-    };
-    let mut frames: Vec<(SensorFrame, LinkFate)> = Vec::with_capacity(4);
-    let mut slip_seen: VecDeque<bool> = std::iter::repeat_n(false, detect_ticks).collect();
-    let (mut v, mut omega, mut dist, mut rot) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let mut tally = Tally::new(detect_ticks as u64);
-    let mut status = "none";
-    let mut missing = 0u64;
-    let mut core = Duration::ZERO;
-    let (mut brush_s, mut substeps) = (Duration::ZERO, 0u64);
-    let mut control = Duration::ZERO;
-    let period_us = (1e6 / scene.tick_hz).round().max(1.0) as u64;
-
     for k in 0..ticks {
-        let t0 = now(untimed);
-        w.t_s = k as f64 * dt;
-        w.force_n = [0.0, 0.0];
-        w.moment_nm = 0.0;
-        w.support_fraction = task::support_fraction(scene, w.t_s);
-        task::apply(scene, &mut w);
-        core += since(t0);
-        pipeline.load(&mut w);
-
-        let ([fx, fy], moment) = match &plant {
-            None => (w.contact_force_n(), w.contact_moment_nm()),
-            Some(p) => (p.report().f_t_n, p.report().m_n_nm),
-        };
-        let mut frame = SensorFrame {
-            seq: k as u32,
-            timestamp_us: (k + 1) * period_us,
-            tangential_force_n: [fx as f32, fy as f32],
-            torsional_moment_nm: moment as f32,
-            normal_force_n: w.normal_n as f32,
-            slip: Default::default(),
-        };
-        pipeline.sense(&w, &mut frame);
-        let sensed = frame;
-        frames.clear();
-        frames.push((frame, LinkFate::Deliver));
-        pipeline.link(&mut frames);
-
-        let t1 = now(untimed);
-        let seen = slip_seen.pop_front().unwrap_or(false);
-        match ctl.tick(&frames, seen).map_err(|e| e.to_string())? {
-            Some(a) => {
-                w.command_n = a.command_n;
-                status = a.status;
+        if let Some(sample) = run.tick(k, sink.is_some())? {
+            if let Some(sink) = sink.as_deref_mut() {
+                sink.sample(&sample)?;
             }
-            None => missing += 1,
         }
-        control += since(t1);
-
-        let t2 = now(untimed);
-        let dropped = tally.dropped_at.is_some();
-        // The plant step: the true load, whether it slips, and the object's slide.
-        let (tl, slipping, ft, mn) = match plant.as_mut() {
-            Some(p) => {
-                let step = brush_tick(p, &mut w, dropped);
-                brush_s += since(t2);
-                substeps += p.report().substeps as u64;
-                (dist, rot) = (p.report().slip_distance_m, p.report().slip_rotation_rad);
-                core += since(t2);
-                pipeline.contact(&mut w);
-                step
-            }
-            None => {
-                w.half_width_eq_m = truth.half_width_m(w.normal_n);
-                w.half_width_m = w.half_width_eq_m;
-                core += since(t2);
-                pipeline.contact(&mut w);
-                let (ft, mn) = (fx.hypot(fy), w.contact_moment_nm().abs());
-                let tl = truth.evaluate(ft, mn, w.normal_n, w.half_width_m);
-                let slipping = tl.utilisation > 1.0;
-                if slipping && !dropped {
-                    let excess = if tl.utilisation.is_finite() {
-                        1.0 - 1.0 / tl.utilisation
-                    } else {
-                        1.0
-                    };
-                    v += excess * w.force_n[0].hypot(w.force_n[1]) / w.mass_kg * dt;
-                    omega += excess * w.moment_nm.abs() / w.inertia_kg_m2 * dt;
-                    dist += v * dt;
-                    rot += omega * dt;
-                } else if !dropped {
-                    v = 0.0;
-                    omega = 0.0;
-                }
-                // What the next tick's sensors can know of this one (the slip sensor).
-                w.true_utilisation = tl.utilisation;
-                w.sliding = slipping && !dropped;
-                (tl, slipping, ft, mn)
-            }
-        };
-        let t3 = now(untimed);
-        tally.record(&w, &tl, slipping, (dist, rot));
-        slip_seen.push_back(slipping);
-        if let Some(sink) = sink.as_deref_mut() {
-            sink.sample(&sample(
-                &w,
-                &sensed,
-                (ft, mn),
-                &tl,
-                slipping,
-                (dist, rot),
-                status,
-            ))?;
-        }
-        core += since(t3);
-        actuate(&mut pipeline, &mut w, has_actuator);
         report_progress(progress, k);
     }
     if let Some(p) = progress {
         p.inc(ticks % 1000);
     }
-    let mut link = ctl.link_summary().map_err(|e| e.to_string())?;
-    link.commands_missing = missing;
-
-    let effect_costs = pipeline.costs();
-    let total = core + effect_costs.iter().map(|(_, c)| *c).sum::<Duration>();
-    let share = |d: Duration| {
-        if total.is_zero() {
-            0.0
-        } else {
-            d.as_secs_f64() / total.as_secs_f64()
-        }
-    };
-    let mut step_cost_share = BTreeMap::new();
-    step_cost_share.insert("core".to_string(), share(core));
-    for (name, c) in &effect_costs {
-        step_cost_share.insert(name.clone(), share(*c));
-    }
-    let mean_n = if ticks > 0 {
-        tally.sum_n / ticks as f64
-    } else {
-        0.0
-    };
-    let wall_s = wall.elapsed().as_secs_f64();
-    let duration_s = ticks as f64 * dt;
-    let mut metrics = ctl.device_metrics().map_err(|e| e.to_string())?;
-    metrics.insert("plant_step_s".to_string(), total.as_secs_f64());
-    metrics.insert("controller_and_link_s".to_string(), control.as_secs_f64());
-    if let Some(t) = tally.dropped_at {
-        metrics.insert("dropped_at_s".to_string(), t);
-    }
-    if plant.is_some() && ticks > 0 {
-        // The brush plant's own step (pressure solve, sub-steps): wall time per tick.
-        metrics.insert(
-            "brush_step_per_tick_s".to_string(),
-            brush_s.as_secs_f64() / ticks as f64,
-        );
-        metrics.insert(
-            "brush_substeps_per_tick".to_string(),
-            substeps as f64 / ticks as f64,
-        );
-    }
-    if pipeline.names().iter().any(|n| n == "partial_slip") {
-        metrics.insert("max_micro_slip_m".to_string(), tally.max_micro_m);
-    }
-    let surface = if options.skip_samples || plant.is_some() {
+    let summary = run.summary(controller, ticks, wall)?;
+    let surface = if options.skip_samples || !on_surface {
         Vec::new()
     } else {
+        let mean_n = summary.mean_normal_force_n;
         truth.normalised_surface(truth.half_width_m(mean_n.max(cfg.n_min_n)))
     };
     Ok(RunOutput {
-        summary: RunSummary {
-            scene: scene.name.clone(),
-            controller: controller.to_string(),
-            dropped: tally.dropped_at.is_some(),
-            slip_events: tally.events,
-            slip_distance_m: dist,
-            slip_rotation_rad: rot,
-            mean_normal_force_n: mean_n,
-            peak_normal_force_n: tally.peak_n,
-            expected_slip: scene.expected_slip,
-            max_utilisation: tally.max_u,
-            ticks,
-            duration_s,
-            wall_s,
-            real_time_factor: if wall_s > 0.0 {
-                duration_s / wall_s
-            } else {
-                0.0
-            },
-            link,
-            step_cost_share,
-            effects: pipeline.names(),
-            metrics,
-        },
+        summary,
         samples: Vec::new(),
         surface,
     })
-}
-
-/// Stage 4 of the step: the actuator effect, or the command applied as it is.
-fn actuate(pipeline: &mut crate::sim::effects::Pipeline, w: &mut World, has_actuator: bool) {
-    if has_actuator {
-        pipeline.actuate(w);
-    } else {
-        w.normal_n = w.command_n;
-    }
 }
 
 /// Advances the progress bar every 1000 ticks.
@@ -461,119 +259,4 @@ fn report_progress(progress: Option<&ProgressBar>, k: u64) {
             p.inc(1000);
         }
     }
-}
-
-/// One tick's sample.
-fn sample(
-    w: &World,
-    sensed: &SensorFrame,
-    (ft, mn): (f64, f64),
-    tl: &TrueLoad,
-    slipping: bool,
-    (dist, rot): (f64, f64),
-    status: &'static str,
-) -> Sample {
-    let [mx, my] = sensed.tangential_force_n;
-    Sample {
-        t_s: w.t_s,
-        ft_n: ft,
-        mn_nm: mn,
-        ft_meas_n: f64::from(mx).hypot(f64::from(my)),
-        mn_meas_nm: f64::from(sensed.torsional_moment_nm).abs(),
-        n_cmd_n: w.command_n,
-        n_true_n: w.normal_n,
-        a_true_m: w.half_width_m,
-        f_norm: tl.f_norm,
-        m_norm: tl.m_norm,
-        pitch: tl.pitch,
-        utilisation: tl.utilisation,
-        slipping,
-        slip_distance_m: dist,
-        slip_rotation_rad: rot,
-        status,
-    }
-}
-
-/// The brush plant's step for one tick (unless the object is already `dropped`), and
-/// what the run records of it: the load state, whether the contact slides grossly, and
-/// the contact's `|f_t|` and `|m_n|`. For the brush finger `utilisation` is the fraction
-/// of the loaded elements that slide (1 in gross slip), `f_norm = |f_t|/(μ_s N)`,
-/// `m_norm = |m_n|/(μ_s N a)` and `pitch` is 0 (there is no limit surface). Sets the
-/// world's half-width, utilisation and sliding for the effects.
-/// A run's statistics, tick by tick, whatever the plant: slip events, the drop, the
-/// normal force's sum and peak, the greatest utilisation and micro-slip.
-#[derive(Debug)]
-struct Tally {
-    /// Ticks of sticking before a slip counts as a new event.
-    stick_ticks: u64,
-    stuck_for: u64,
-    events: u64,
-    dropped_at: Option<f64>,
-    sum_n: f64,
-    peak_n: f64,
-    max_u: f64,
-    max_micro_m: f64,
-}
-
-impl Tally {
-    fn new(stick_ticks: u64) -> Self {
-        Self {
-            stick_ticks,
-            stuck_for: u64::MAX,
-            events: 0,
-            dropped_at: None,
-            sum_n: 0.0,
-            peak_n: 0.0,
-            max_u: 0.0,
-            max_micro_m: 0.0,
-        }
-    }
-
-    /// Counts one tick: `slipping` whether the contact slid, `slide` the object's slip
-    /// distance [m] and rotation [rad] so far. Nothing is counted as slip once dropped.
-    fn record(&mut self, w: &World, tl: &TrueLoad, slipping: bool, slide: (f64, f64)) {
-        if self.dropped_at.is_none() {
-            if slipping {
-                if self.stuck_for >= self.stick_ticks {
-                    self.events += 1;
-                }
-                self.stuck_for = 0;
-            } else {
-                self.stuck_for = self.stuck_for.saturating_add(1);
-            }
-            if is_drop(slide.0, slide.1) {
-                self.dropped_at = Some(w.t_s);
-            }
-        }
-        self.sum_n += w.normal_n;
-        self.peak_n = self.peak_n.max(w.normal_n);
-        if tl.utilisation.is_finite() {
-            self.max_u = self.max_u.max(tl.utilisation);
-        }
-        self.max_micro_m = self.max_micro_m.max(w.micro_slip_m);
-    }
-}
-
-fn brush_tick(plant: &mut BrushPlant, w: &mut World, dropped: bool) -> (TrueLoad, bool, f64, f64) {
-    let r = if dropped {
-        plant.report()
-    } else {
-        plant.step(w.normal_n, w.force_n, w.moment_nm, w.dt_s)
-    };
-    let ft = r.f_t_n[0].hypot(r.f_t_n[1]);
-    let mn = r.m_n_nm.abs();
-    let cap = plant.mu_static() * r.normal_n;
-    let ratio = |x: f64, d: f64| if d > 0.0 { x / d } else { 0.0 };
-    let tl = TrueLoad {
-        f_norm: ratio(ft, cap),
-        m_norm: ratio(mn, cap * r.half_width_m),
-        pitch: 0.0,
-        utilisation: 1.0 - r.stuck_fraction,
-    };
-    w.half_width_eq_m = r.half_width_m;
-    w.half_width_m = r.half_width_m;
-    w.true_utilisation = tl.utilisation;
-    let slipping = r.gross_slip;
-    w.sliding = slipping && !dropped;
-    (tl, slipping, ft, mn)
 }

@@ -1,0 +1,131 @@
+//! `host-sim bench`: its arguments, parsed into [`crate::bench::BenchOptions`] for
+//! [`crate::bench::run`].
+
+use crate::bench::families::{self, BenchFinger};
+use crate::bench::sweep::{Sweep, SWEEPS};
+use crate::bench::{self, BenchError, BenchLink, BenchOptions};
+use crate::finger_file::FingerFile;
+use crate::CliError;
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `host-sim bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// A family (lift-hold, shake, twist, mu-mismatch, faults) or all.
+    #[arg(long, default_value = "all")]
+    pub family: String,
+    /// Trials per family.
+    #[arg(long, default_value_t = 200)]
+    pub trials: usize,
+    /// Seed of the trials.
+    #[arg(long, default_value_t = 17)]
+    pub seed: u64,
+    /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
+    /// slip-servo) or all.
+    #[arg(long, default_value = "all")]
+    pub controller: String,
+    /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
+    #[arg(long, default_value = "bench-out")]
+    pub out: PathBuf,
+    /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
+    /// sample of trials also runs over the pseudo-terminal and must give identical
+    /// results).
+    #[arg(long, default_value = "direct")]
+    pub link: String,
+    /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
+    #[arg(long)]
+    pub trace: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// A finger file (`host-sim calibrate --out`'s, or a scene): every trial's finger and
+    /// the μ every controller believes (a scene's [controller] mu if set); default the
+    /// shipped scenes' finger. The limit-surface finger only.
+    #[arg(long)]
+    pub finger: Option<PathBuf>,
+}
+
+/// The finger of `--finger`, or the default.
+fn bench_finger(args: &BenchArgs) -> Result<BenchFinger, CliError> {
+    let Some(path) = &args.finger else {
+        return Ok(BenchFinger::default());
+    };
+    let file = FingerFile::load(path, "--finger")?;
+    bench::finger_from_file(&file)
+        .map_err(|why| CliError::Usage(format!("--finger: {}: {why}", path.display())))
+}
+
+/// The families and sweeps an argument list selects.
+pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), CliError> {
+    let families: Vec<&'static str> = if args.family == "all" {
+        families::NAMES.to_vec()
+    } else {
+        vec![*families::NAMES
+            .iter()
+            .find(|n| **n == args.family)
+            .ok_or_else(|| {
+                CliError::Usage(format!(
+                    "--family: unknown family \"{}\", expected all or one of {}",
+                    args.family,
+                    families::NAMES.join(", ")
+                ))
+            })?]
+    };
+    let sweeps: Vec<Sweep> = if args.controller == "all" {
+        SWEEPS.to_vec()
+    } else {
+        vec![*SWEEPS
+            .iter()
+            .find(|s| s.controller == args.controller)
+            .ok_or_else(|| {
+                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
+                CliError::Usage(format!(
+                    "--controller: unknown controller \"{}\", expected all or one of {}",
+                    args.controller,
+                    names.join(", ")
+                ))
+            })?]
+    };
+    Ok((families, sweeps))
+}
+
+/// The options `args` ask for, or the first bad argument.
+pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
+    let (families, sweeps) = selection(args)?;
+    let finger = bench_finger(args)?;
+    if args.trials == 0 {
+        return Err(CliError::Usage("--trials: must be at least 1".into()));
+    }
+    let link = match args.link.as_str() {
+        "direct" => BenchLink::Direct,
+        "pty" => BenchLink::Pty,
+        other => {
+            return Err(CliError::Usage(format!(
+                "--link: \"{other}\" is not a link, expected direct or pty"
+            )))
+        }
+    };
+    Ok(BenchOptions {
+        families,
+        sweeps,
+        finger,
+        trials: args.trials,
+        seed: args.seed,
+        link,
+        out: args.out.clone(),
+        trace: args.trace,
+        quiet: args.quiet,
+    })
+}
+
+/// `host-sim bench`.
+pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    let opts = options(args)?;
+    bench::run(&opts, |text| print!("{text}")).map_err(|e| match e {
+        BenchError::Write(e) => CliError::Failed(format!("--out: {e}")),
+        BenchError::Run(e) => CliError::Failed(e),
+    })?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}

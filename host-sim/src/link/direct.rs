@@ -5,6 +5,7 @@
 //! thread, no system call. The answers are bit-identical to the pty link's (the device
 //! sees the same bytes); only the wall time differs.
 
+use super::handed::Handed;
 use super::pty::HostClock;
 use super::{Link, LinkError};
 use softgrip::controller::TickMath;
@@ -50,25 +51,25 @@ impl embedded_io::Write for MemoryPort {
 }
 
 /// A [`Device`] served on the calling thread through an in-memory byte stream.
-pub struct DirectLink<M: TickMath<f32>> {
-    device: Box<Device<M>>,
+pub struct DirectLink<M: TickMath<f32> + Send + 'static> {
+    device: Box<Device<M, Handed<M>>>,
     port: MemoryPort,
     clock: HostClock,
     decoder: DefaultFrameDecoder,
     tx: [u8; MAX_FRAME_LEN],
 }
 
-impl<M: TickMath<f32>> std::fmt::Debug for DirectLink<M> {
+impl<M: TickMath<f32> + Send + 'static> std::fmt::Debug for DirectLink<M> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("DirectLink").finish_non_exhaustive()
     }
 }
 
-impl<M: TickMath<f32>> DirectLink<M> {
+impl<M: TickMath<f32> + Send + 'static> DirectLink<M> {
     /// A fresh device (not configured yet), after the protocol handshake.
     pub fn new() -> Result<Self, LinkError> {
         let mut link = Self {
-            device: Box::new(Device::<M>::new()),
+            device: Box::new(Device::with_source(Handed::new())),
             port: MemoryPort::default(),
             clock: HostClock::new(Instant::now()),
             decoder: DefaultFrameDecoder::new(),
@@ -91,7 +92,7 @@ impl<M: TickMath<f32>> DirectLink<M> {
     }
 }
 
-impl<M: TickMath<f32>> Link for DirectLink<M> {
+impl<M: TickMath<f32> + Send + 'static> Link for DirectLink<M> {
     fn exchange(&mut self, request: &Request) -> Result<Reply, LinkError> {
         let len = encode(request, &mut self.tx)
             .map_err(|e| LinkError::Io(std::io::Error::other(e.to_string())))?;

@@ -9,6 +9,7 @@
 //! `bench` uses by default (bit-identical answers, no pty round trip).
 
 pub mod direct;
+pub mod handed;
 pub mod pty;
 pub mod qemu;
 pub mod serial;

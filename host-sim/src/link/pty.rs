@@ -5,6 +5,7 @@
 //! time, where the device thread also ticks its controller through silence on the wall
 //! clock, as the firmware does on its timer.
 
+use super::handed::Handed;
 use super::{Framed, Link, LinkError};
 use embedded_io_adapters::std::FromStd;
 use serialport::TTYPort;
@@ -79,13 +80,13 @@ impl PtyLink {
 /// period with no sensor frame ([`Device::idle_ticks_due`]), so a silent plant moves the
 /// device's command to its fault target as the firmware's would; in lockstep (and before a
 /// configuration) the watch is unarmed and it blocks until the plant sends.
-fn serve<M: TickMath<f32>>(port: TTYPort) {
+fn serve<M: TickMath<f32> + Send + 'static>(port: TTYPort) {
     use serialport::SerialPort;
     let start = Instant::now();
     // Microseconds since the start, wrapping (every 71 minutes; the watch wraps with it).
     let now_us = || start.elapsed().as_micros() as u32;
     let mut io = FromStd::new(port);
-    let mut device = Device::<M>::new();
+    let mut device = Device::<M, Handed<M>>::with_source(Handed::new());
     let mut clock = HostClock(start);
     let mut watch = SilenceWatch::new(1e6);
     loop {

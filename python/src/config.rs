@@ -1,54 +1,52 @@
 //! `ControllerConfig` from Python keywords and back, and building the controller.
+//!
+//! The fields come from the struct itself: their names from `ControllerConfig::FIELDS`,
+//! their values through its serde implementation (via a `toml::Value`, which, unlike
+//! JSON, holds an infinite float). Only the three fields Python spells its own way are
+//! written here: `shape` and `mode` (their names), `skew` (a number, tuple or dict).
 
 use crate::*;
+use toml::{Table, Value};
 
 /// Every `ControllerConfig` field, in declaration order.
-pub(crate) const FIELDS: [&str; 24] = [
-    "mu",
-    "shape",
-    "k",
-    "skew",
-    "c_m_per_n_gamma",
-    "gamma",
-    "half_length_m",
-    "safety",
-    "n_min_n",
-    "n_max_n",
-    "rise_rate_n_per_s",
-    "fall_rate_n_per_s",
-    "tick_period_s",
-    "stale_timeout_s",
-    "fault_force_n",
-    "force_range_n",
-    "moment_range_nm",
-    "mode",
-    "force_nodes",
-    "quadrature_order",
-    "table_samples",
-    "aspect_count",
-    "actuator_lag_s",
-    "actuator_slew_n_per_s",
-];
+pub(crate) const FIELDS: &[&str] = ControllerConfig::FIELDS;
 
-pub(crate) fn count(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyResult<u16> {
-    let n: i64 = v
-        .extract()
-        .map_err(|_| PyTypeError::new_err(format!("{name}: expected an integer")))?;
-    count_of(py, name, n)
+/// A plain field's value as serde reads it: a Python float or int, else a `TypeError`.
+fn number(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
+    if v.is_instance_of::<pyo3::types::PyInt>() && !v.is_instance_of::<pyo3::types::PyBool>() {
+        if let Ok(i) = v.extract::<i64>() {
+            return Ok(Value::Integer(i));
+        }
+    }
+    v.extract::<f64>()
+        .map(Value::Float)
+        .map_err(|_| PyTypeError::new_err(format!("{name}: expected a number")))
 }
 
-/// A table size `n` as the configuration's `u16`, or a `ConfigError` naming `name`.
-pub(crate) fn count_of(py: Python<'_>, name: &str, n: i64) -> PyResult<u16> {
-    u16::try_from(n).map_err(|_| {
-        bad(
-            py,
-            name,
-            format!("{name}: {n} is out of range, expected 0 ..= 65535"),
-        )
-    })
+/// `cfg` as a table of its fields (serde; a `None` is left out).
+fn table_of(cfg: &ControllerConfig) -> PyResult<Table> {
+    Table::try_from(cfg).map_err(|e| PyValueError::new_err(format!("config: {e}")))
 }
 
-pub(crate) fn real(name: &str, v: &Bound<'_, PyAny>) -> PyResult<f64> {
+/// `cfg` with the plain field `key` set to `value`, through serde: a value the field's
+/// type cannot hold (e.g. a count beyond `u16`) is a `ConfigError` naming `key`.
+fn with_field(
+    py: Python<'_>,
+    cfg: &ControllerConfig,
+    key: &str,
+    value: Value,
+) -> PyResult<ControllerConfig> {
+    let mut table = table_of(cfg)?;
+    table.insert(key.to_string(), value);
+    let skew = cfg.skew;
+    let out: ControllerConfig = Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| bad(py, key, format!("{key}: {}", e.message().trim())))?;
+    // The table leaves `None` out, which serde reads as the default: put it back.
+    Ok(ControllerConfig { skew, ..out })
+}
+
+fn real(name: &str, v: &Bound<'_, PyAny>) -> PyResult<f64> {
     v.extract()
         .map_err(|_| PyTypeError::new_err(format!("{name}: expected a number")))
 }
@@ -97,7 +95,7 @@ pub(crate) fn skew_of(v: &Bound<'_, PyAny>) -> PyResult<Option<SkewParams>> {
     ))
 }
 
-/// `base` with the keywords applied.
+/// `cfg` with the keywords applied; an unknown one is a `TypeError` naming it.
 pub(crate) fn apply(
     py: Python<'_>,
     mut cfg: ControllerConfig,
@@ -109,30 +107,12 @@ pub(crate) fn apply(
     for (key, v) in kw.iter() {
         let key: String = key.extract()?;
         match key.as_str() {
-            "mu" => cfg.mu = real(&key, &v)?,
             "shape" => cfg.shape = shape_of(py, &v.extract::<String>()?)?,
-            "k" => cfg.k = real(&key, &v)?,
-            "skew" => cfg.skew = skew_of(&v)?,
-            "c_m_per_n_gamma" => cfg.c_m_per_n_gamma = real(&key, &v)?,
-            "gamma" => cfg.gamma = real(&key, &v)?,
-            "half_length_m" => cfg.half_length_m = real(&key, &v)?,
-            "safety" => cfg.safety = real(&key, &v)?,
-            "n_min_n" => cfg.n_min_n = real(&key, &v)?,
-            "n_max_n" => cfg.n_max_n = real(&key, &v)?,
-            "rise_rate_n_per_s" => cfg.rise_rate_n_per_s = real(&key, &v)?,
-            "fall_rate_n_per_s" => cfg.fall_rate_n_per_s = real(&key, &v)?,
-            "tick_period_s" => cfg.tick_period_s = real(&key, &v)?,
-            "stale_timeout_s" => cfg.stale_timeout_s = real(&key, &v)?,
-            "fault_force_n" => cfg.fault_force_n = real(&key, &v)?,
-            "force_range_n" => cfg.force_range_n = real(&key, &v)?,
-            "moment_range_nm" => cfg.moment_range_nm = real(&key, &v)?,
             "mode" => cfg.mode = mode_of(py, &v.extract::<String>()?)?,
-            "force_nodes" => cfg.force_nodes = count(py, &key, &v)?,
-            "quadrature_order" => cfg.quadrature_order = count(py, &key, &v)?,
-            "table_samples" => cfg.table_samples = count(py, &key, &v)?,
-            "aspect_count" => cfg.aspect_count = count(py, &key, &v)?,
-            "actuator_lag_s" => cfg.actuator_lag_s = real(&key, &v)?,
-            "actuator_slew_n_per_s" => cfg.actuator_slew_n_per_s = real(&key, &v)?,
+            "skew" => cfg.skew = skew_of(&v)?,
+            plain if FIELDS.contains(&plain) => {
+                cfg = with_field(py, &cfg, plain, number(plain, &v)?)?;
+            }
             other => {
                 return Err(PyTypeError::new_err(format!(
                     "unexpected keyword argument {other:?} (ControllerConfig fields: {})",
@@ -144,38 +124,35 @@ pub(crate) fn apply(
     Ok(cfg)
 }
 
+/// `c` as a dict of its fields, in declaration order, as `apply` takes them.
 pub(crate) fn config_dict<'py>(
     py: Python<'py>,
     c: &ControllerConfig,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let table = table_of(c)?;
     let d = PyDict::new(py);
-    d.set_item("mu", c.mu)?;
-    d.set_item("shape", c.shape.name())?;
-    d.set_item("k", c.k)?;
-    d.set_item(
-        "skew",
-        c.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
-    )?;
-    d.set_item("c_m_per_n_gamma", c.c_m_per_n_gamma)?;
-    d.set_item("gamma", c.gamma)?;
-    d.set_item("half_length_m", c.half_length_m)?;
-    d.set_item("safety", c.safety)?;
-    d.set_item("n_min_n", c.n_min_n)?;
-    d.set_item("n_max_n", c.n_max_n)?;
-    d.set_item("rise_rate_n_per_s", c.rise_rate_n_per_s)?;
-    d.set_item("fall_rate_n_per_s", c.fall_rate_n_per_s)?;
-    d.set_item("tick_period_s", c.tick_period_s)?;
-    d.set_item("stale_timeout_s", c.stale_timeout_s)?;
-    d.set_item("fault_force_n", c.fault_force_n)?;
-    d.set_item("force_range_n", c.force_range_n)?;
-    d.set_item("moment_range_nm", c.moment_range_nm)?;
-    d.set_item("mode", c.mode.name())?;
-    d.set_item("force_nodes", c.force_nodes)?;
-    d.set_item("quadrature_order", c.quadrature_order)?;
-    d.set_item("table_samples", c.table_samples)?;
-    d.set_item("aspect_count", c.aspect_count)?;
-    d.set_item("actuator_lag_s", c.actuator_lag_s)?;
-    d.set_item("actuator_slew_n_per_s", c.actuator_slew_n_per_s)?;
+    for &name in FIELDS {
+        match name {
+            "shape" => d.set_item(name, c.shape.name())?,
+            "mode" => d.set_item(name, c.mode.name())?,
+            "skew" => d.set_item(
+                name,
+                c.skew.map(|s| (s.delta_over_a, s.alpha, s.locus_over_a)),
+            )?,
+            _ => match table.get(name) {
+                Some(Value::Float(x)) => d.set_item(name, x)?,
+                Some(Value::Integer(i)) => d.set_item(name, i)?,
+                Some(Value::Boolean(b)) => d.set_item(name, b)?,
+                Some(Value::String(s)) => d.set_item(name, s)?,
+                None => d.set_item(name, py.None())?,
+                Some(other) => {
+                    return Err(PyValueError::new_err(format!(
+                        "config: {name}: cannot show {other} in Python"
+                    )))
+                }
+            },
+        }
+    }
     Ok(d)
 }
 

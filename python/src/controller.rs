@@ -100,36 +100,11 @@ pub(crate) fn slip_of(py: Python<'_>, v: Option<&Bound<'_, PyAny>>) -> PyResult<
 #[pymethods]
 impl Controller {
     #[new]
-    #[pyo3(signature = (
-        *,
-        mu = 0.8,
-        shape = "rect",
-        k = 2.0,
-        skew = None,
-        c_m_per_n_gamma = 2.5e-3,
-        gamma = 0.5,
-        half_length_m = 0.01,
-        safety = 1.3,
-        n_min_n = 0.2,
-        n_max_n = 20.0,
-        rise_rate_n_per_s = 400.0,
-        fall_rate_n_per_s = 20.0,
-        tick_period_s = 0.001,
-        stale_timeout_s = 0.02,
-        fault_force_n = 10.0,
-        force_range_n = 100.0,
-        moment_range_nm = 2.0,
-        mode = "ellipse",
-        force_nodes = 48,
-        quadrature_order = 28,
-        table_samples = 48,
-        aspect_count = 8,
-        actuator_lag_s = 0.0,
-        actuator_slew_n_per_s = f64::INFINITY,
-        initial_force_n = None,
-    ))]
-    // Written out only for `actuator_slew_n_per_s`'s default, which PyO3 would show as
-    // `...`; tests/test_vocabulary.py checks it against `default_config()`.
+    #[pyo3(signature = (*, initial_force_n = None, **config))]
+    // The fields come in `config` and go through `apply`, as `reconfigure`'s do; the text
+    // signature is written out for `help()` (and is the only copy of the defaults outside
+    // config.rs): tests/test_vocabulary.py checks it against `CONFIG_FIELDS` and
+    // `default_config()`, so a field missing here fails there.
     #[pyo3(text_signature = "(*, mu=0.8, shape='rect', k=2.0, skew=None, \
         c_m_per_n_gamma=0.0025, gamma=0.5, half_length_m=0.01, safety=1.3, n_min_n=0.2, \
         n_max_n=20.0, rise_rate_n_per_s=400.0, fall_rate_n_per_s=20.0, tick_period_s=0.001, \
@@ -137,64 +112,12 @@ impl Controller {
         moment_range_nm=2.0, mode='ellipse', force_nodes=48, quadrature_order=28, \
         table_samples=48, aspect_count=8, actuator_lag_s=0.0, actuator_slew_n_per_s=1e999, \
         initial_force_n=None)")]
-    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        mu: f64,
-        shape: &str,
-        k: f64,
-        skew: Option<&Bound<'_, PyAny>>,
-        c_m_per_n_gamma: f64,
-        gamma: f64,
-        half_length_m: f64,
-        safety: f64,
-        n_min_n: f64,
-        n_max_n: f64,
-        rise_rate_n_per_s: f64,
-        fall_rate_n_per_s: f64,
-        tick_period_s: f64,
-        stale_timeout_s: f64,
-        fault_force_n: f64,
-        force_range_n: f64,
-        moment_range_nm: f64,
-        mode: &str,
-        force_nodes: i64,
-        quadrature_order: i64,
-        table_samples: i64,
-        aspect_count: i64,
-        actuator_lag_s: f64,
-        actuator_slew_n_per_s: f64,
         initial_force_n: Option<f64>,
+        config: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let cfg = ControllerConfig {
-            mu,
-            shape: shape_of(py, shape)?,
-            k,
-            skew: match skew {
-                Some(v) => skew_of(v)?,
-                None => None,
-            },
-            c_m_per_n_gamma,
-            gamma,
-            half_length_m,
-            safety,
-            n_min_n,
-            n_max_n,
-            rise_rate_n_per_s,
-            fall_rate_n_per_s,
-            tick_period_s,
-            stale_timeout_s,
-            fault_force_n,
-            force_range_n,
-            moment_range_nm,
-            mode: mode_of(py, mode)?,
-            force_nodes: count_of(py, "force_nodes", force_nodes)?,
-            quadrature_order: count_of(py, "quadrature_order", quadrature_order)?,
-            table_samples: count_of(py, "table_samples", table_samples)?,
-            aspect_count: count_of(py, "aspect_count", aspect_count)?,
-            actuator_lag_s,
-            actuator_slew_n_per_s,
-        };
+        let cfg = apply(py, ControllerConfig::DEFAULT, config)?;
         let mut inner = build(py, cfg)?;
         if let Some(n) = initial_force_n {
             let n = finite(py, "initial_force_n", n)?;

@@ -91,3 +91,27 @@ def test_a_repeated_or_earlier_timestamp_is_refused_counted_and_holds():
     assert c.time_rejections == 2
     cmd, st = c.tick(1.0, 0.004, 0.011)
     assert st.status == "ok"
+
+
+def test_config_round_trips_every_field_through_serde():
+    # The keywords, config() and default_config() all come from ControllerConfig's own
+    # field list and serde implementation: same names, same order.
+    d = softgrip.default_config()
+    assert list(d) == list(softgrip.CONFIG_FIELDS)
+    c = softgrip.Controller(skew=(0.5, 1.2, 0.2), mode="table", force_nodes=32, mu=1)
+    # A plain field set through serde keeps the ones Python spells its own way.
+    c.reconfigure(safety=1.5, actuator_slew_n_per_s=math.inf)
+    got = c.config
+    assert got["skew"] == (0.5, 1.2, 0.2)
+    assert got["mode"] == "table" and got["force_nodes"] == 32 and got["mu"] == 1.0
+    assert got["safety"] == 1.5 and math.isinf(got["actuator_slew_n_per_s"])
+    assert softgrip.Controller(**got).config == got
+
+
+def test_a_value_the_field_cannot_hold_names_the_field():
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.Controller(quadrature_order=70000)
+    assert e.value.param == "quadrature_order"
+    assert str(e.value).startswith("quadrature_order:")
+    with pytest.raises(TypeError, match="^gamma: expected a number"):
+        softgrip.Controller(gamma="0.5")

@@ -5,6 +5,38 @@ use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
 use serde::{Deserialize, Serialize};
 
+/// Defines a struct of named fields and, from the same field list, two constants on it:
+/// `FIELDS`, the field names in declaration order, and `SCHEMA`, its part of the
+/// protocol's [`SCHEMA`](crate::protocol::SCHEMA) (`Name{field:type,...}`, types as
+/// written). So a field is written once, and the wire's description follows it.
+macro_rules! with_schema {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $(#[$fmeta0:meta])* pub $f0:ident: $t0:ty,
+            $( $(#[$fmeta:meta])* pub $f:ident: $t:ty, )*
+        }
+    ) => {
+        $(#[$meta])*
+        pub struct $name {
+            $(#[$fmeta0])* pub $f0: $t0,
+            $( $(#[$fmeta])* pub $f: $t, )*
+        }
+
+        impl $name {
+            /// The field names, in declaration order (the order on the wire).
+            pub const FIELDS: &'static [&'static str] = &[stringify!($f0), $(stringify!($f)),*];
+
+            /// This type's part of the protocol's [`SCHEMA`](crate::protocol::SCHEMA):
+            /// `Name{field:type,...}`, generated from the definition.
+            pub const SCHEMA: &'static str = concat!(
+                stringify!($name), "{", stringify!($f0), ":", stringify!($t0),
+                $(",", stringify!($f), ":", stringify!($t),)* "}"
+            );
+        }
+    };
+}
+
 /// Which fingertip the contact belongs to: the one shape type of the crate and its tools
 /// (the limit surface's [`Shape`] is this plus the aspect ratio, see
 /// [`ControllerConfig::fls_shape`]). Text formats (scene files, the command line) spell it
@@ -62,16 +94,20 @@ impl Mode {
     }
 }
 
-/// The skew of the pressure peak (Eq. 16, 17), in units of the half-width `a`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct SkewParams {
-    /// `Δ/a ∈ [0, 1)`: how far the peak can move (paper: 0.9).
-    pub delta_over_a: f64,
-    /// `α > 0`: how fast it moves with the centre of rotation (paper: 1.1).
-    pub alpha: f64,
-    /// `h/a`: the bulge of the peak's locus (`Δ/2` is the paper's circular path; only the
-    /// disc feels it).
-    pub locus_over_a: f64,
+with_schema! {
+    /// The skew of the pressure peak (Eq. 16, 17), in units of the half-width `a`. Text
+    /// formats give all three fields and no other (`deny_unknown_fields`).
+    #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct SkewParams {
+        /// `Δ/a ∈ [0, 1)`: how far the peak can move (paper: 0.9).
+        pub delta_over_a: f64,
+        /// `α > 0`: how fast it moves with the centre of rotation (paper: 1.1).
+        pub alpha: f64,
+        /// `h/a`: the bulge of the peak's locus (`Δ/2` is the paper's circular path; only
+        /// the disc feels it).
+        pub locus_over_a: f64,
+    }
 }
 
 impl SkewParams {
@@ -83,109 +119,122 @@ impl SkewParams {
     };
 }
 
-/// Everything the controller depends on. Plain data: build it, then hand it to
-/// [`Controller::new`](super::Controller::new), which validates it and precomputes the
-/// limit surfaces. Parameter names in errors are the field names.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ControllerConfig {
-    /// Coulomb friction coefficient `μ > 0`.
-    pub mu: f64,
-    /// Fingertip shape.
-    pub shape: FingerShape,
-    /// Pressure exponent `k ≥ 1` (`f64::INFINITY` for uniform pressure).
-    pub k: f64,
-    /// Skew of the pressure peak, or `None` for the symmetric profile. Only table mode sees
-    /// it: the skew cannot change the pitch, hence not the ellipse either.
-    pub skew: Option<SkewParams>,
-    /// `c` in `a = c·N^γ` [m/N^γ].
-    pub c_m_per_n_gamma: f64,
-    /// `γ ∈ [0, 1/2]` in `a = c·N^γ`.
-    pub gamma: f64,
-    /// Half-length `l` of the rectangular patch along the cylinder axis [m] (ignored for
-    /// the disc).
-    pub half_length_m: f64,
-    /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
-    pub safety: f64,
-    /// Least commanded normal force `N_min > 0` [N].
-    pub n_min_n: f64,
-    /// Greatest commanded normal force `N_max > N_min` [N].
-    pub n_max_n: f64,
-    /// Fastest rise of the command [N/s].
-    pub rise_rate_n_per_s: f64,
-    /// Fastest fall of the command [N/s].
-    pub fall_rate_n_per_s: f64,
-    /// Time between ticks [s]: the rate limits are applied per tick with this step.
-    pub tick_period_s: f64,
-    /// How long the controller holds its last safe command without a good measurement
-    /// (bad, stale or no frames at all) before it moves to the fault target [s].
-    pub stale_timeout_s: f64,
-    /// The least force to go to once the input has been bad, stale or silent for
-    /// `stale_timeout_s` [N], within `[N_min, N_max]`. The fault target is the greater of
-    /// this and the last required force (capped at `N_max`): a dead link never opens the
-    /// hand, and this force is the floor when nothing was held.
-    pub fault_force_n: f64,
-    /// Sensor range for each tangential force component and the measured normal force
-    /// [N]: a reading beyond it is a sensor fault.
-    pub force_range_n: f64,
-    /// Sensor range for the torsional moment [N·m]: a reading beyond it is a sensor fault.
-    pub moment_range_nm: f64,
-    /// Ellipse or table.
-    pub mode: Mode,
-    /// Normal forces in the start-up grid, spaced evenly in `ln N` over `[N_min, N_max]`
-    /// (2 to [`MAX_FORCE_NODES`](super::MAX_FORCE_NODES)). The tick interpolates the moment
-    /// arm `a(N)·pitch(l/a(N))` linearly between them.
-    pub force_nodes: u16,
-    /// Quadrature order for the start-up precomputation (nodes per side, 4–128).
-    pub quadrature_order: u16,
-    /// Centres of rotation per limit-surface sweep in table mode (at most
-    /// [`MAX_TABLE_SAMPLES`](super::MAX_TABLE_SAMPLES)).
-    pub table_samples: u16,
-    /// Aspect ratios `l/a` in table mode's grid for the rectangle with `γ > 0` (at most
-    /// [`MAX_ASPECTS`](super::MAX_ASPECTS); the disc and `γ = 0` need one).
-    pub aspect_count: u16,
-    /// Time constant of the actuator that applies the command [s], `0 ≤ τ ≤ 1`. With
-    /// `τ > 0` the controller commands ahead of a rising load by about `τ` (see
-    /// [`lead`](super::lead)); 0 turns the lead off.
-    pub actuator_lag_s: f64,
-    /// Fastest rise of the actuator itself [N/s] (`> 0`; `f64::INFINITY` when it is not
-    /// slew-limited). Planned into the lead horizon so that a slew-limited actuator
-    /// starts early enough; unused when `actuator_lag_s = 0`.
-    pub actuator_slew_n_per_s: f64,
+with_schema! {
+    /// Everything the controller depends on. Plain data: build it, then hand it to
+    /// [`Controller::new`](super::Controller::new), which validates it and precomputes the
+    /// limit surfaces. Parameter names in errors are the field names.
+    ///
+    /// The one list of the fields: text formats (scene TOML, JSON, Python keywords) give any
+    /// subset of them, the rest taken from [`ControllerConfig::DEFAULT`] (`serde(default)`),
+    /// and an unknown key is refused by name (`deny_unknown_fields`); the wire (postcard)
+    /// sends every field in this order, and the protocol's
+    /// [`SCHEMA`](crate::protocol::SCHEMA) lists them from [`ControllerConfig::SCHEMA`].
+    #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct ControllerConfig {
+        /// Coulomb friction coefficient `μ > 0`.
+        pub mu: f64,
+        /// Fingertip shape.
+        pub shape: FingerShape,
+        /// Pressure exponent `k ≥ 1` (`f64::INFINITY` for uniform pressure).
+        pub k: f64,
+        /// Skew of the pressure peak, or `None` for the symmetric profile. Only table mode sees
+        /// it: the skew cannot change the pitch, hence not the ellipse either.
+        pub skew: Option<SkewParams>,
+        /// `c` in `a = c·N^γ` [m/N^γ].
+        pub c_m_per_n_gamma: f64,
+        /// `γ ∈ [0, 1/2]` in `a = c·N^γ`.
+        pub gamma: f64,
+        /// Half-length `l` of the rectangular patch along the cylinder axis [m] (ignored for
+        /// the disc).
+        pub half_length_m: f64,
+        /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
+        pub safety: f64,
+        /// Least commanded normal force `N_min > 0` [N].
+        pub n_min_n: f64,
+        /// Greatest commanded normal force `N_max > N_min` [N].
+        pub n_max_n: f64,
+        /// Fastest rise of the command [N/s].
+        pub rise_rate_n_per_s: f64,
+        /// Fastest fall of the command [N/s].
+        pub fall_rate_n_per_s: f64,
+        /// Time between ticks [s]: the rate limits are applied per tick with this step.
+        pub tick_period_s: f64,
+        /// How long the controller holds its last safe command without a good measurement
+        /// (bad, stale or no frames at all) before it moves to the fault target [s].
+        pub stale_timeout_s: f64,
+        /// The least force to go to once the input has been bad, stale or silent for
+        /// `stale_timeout_s` [N], within `[N_min, N_max]`. The fault target is the greater of
+        /// this and the last required force (capped at `N_max`): a dead link never opens the
+        /// hand, and this force is the floor when nothing was held.
+        pub fault_force_n: f64,
+        /// Sensor range for each tangential force component and the measured normal force
+        /// [N]: a reading beyond it is a sensor fault.
+        pub force_range_n: f64,
+        /// Sensor range for the torsional moment [N·m]: a reading beyond it is a sensor fault.
+        pub moment_range_nm: f64,
+        /// Ellipse or table.
+        pub mode: Mode,
+        /// Normal forces in the start-up grid, spaced evenly in `ln N` over `[N_min, N_max]`
+        /// (2 to [`MAX_FORCE_NODES`](super::MAX_FORCE_NODES)). The tick interpolates the moment
+        /// arm `a(N)·pitch(l/a(N))` linearly between them.
+        pub force_nodes: u16,
+        /// Quadrature order for the start-up precomputation (nodes per side, 4–128).
+        pub quadrature_order: u16,
+        /// Centres of rotation per limit-surface sweep in table mode (at most
+        /// [`MAX_TABLE_SAMPLES`](super::MAX_TABLE_SAMPLES)).
+        pub table_samples: u16,
+        /// Aspect ratios `l/a` in table mode's grid for the rectangle with `γ > 0` (at most
+        /// [`MAX_ASPECTS`](super::MAX_ASPECTS); the disc and `γ = 0` need one).
+        pub aspect_count: u16,
+        /// Time constant of the actuator that applies the command [s], `0 ≤ τ ≤ 1`. With
+        /// `τ > 0` the controller commands ahead of a rising load by about `τ` (see
+        /// [`lead`](super::lead)); 0 turns the lead off.
+        pub actuator_lag_s: f64,
+        /// Fastest rise of the actuator itself [N/s] (`> 0`; `f64::INFINITY` when it is not
+        /// slew-limited). Planned into the lead horizon so that a slew-limited actuator
+        /// starts early enough; unused when `actuator_lag_s = 0`.
+        pub actuator_slew_n_per_s: f64,
+    }
 }
 
 impl Default for ControllerConfig {
-    /// A hemicylindrical silicone fingertip in the paper's range: `μ = 0.8`, `k = 2`, no
-    /// skew, `a = 2.5 mm · N^{1/2}`, `l = 10 mm`, `s = 1.3`, 0.2–20 N, 1 kHz, ellipse mode,
-    /// no actuator lead.
+    /// [`ControllerConfig::DEFAULT`].
     fn default() -> Self {
-        Self {
-            mu: 0.8,
-            shape: FingerShape::Rect,
-            k: 2.0,
-            skew: None,
-            c_m_per_n_gamma: 2.5e-3,
-            gamma: 0.5,
-            half_length_m: 10e-3,
-            safety: 1.3,
-            n_min_n: 0.2,
-            n_max_n: 20.0,
-            rise_rate_n_per_s: 400.0,
-            fall_rate_n_per_s: 20.0,
-            tick_period_s: 1e-3,
-            stale_timeout_s: 20e-3,
-            fault_force_n: 10.0,
-            force_range_n: 100.0,
-            moment_range_nm: 2.0,
-            mode: Mode::Ellipse,
-            force_nodes: 48,
-            quadrature_order: 28,
-            table_samples: 48,
-            aspect_count: 8,
-            actuator_lag_s: 0.0,
-            actuator_slew_n_per_s: f64::INFINITY,
-        }
+        Self::DEFAULT
     }
+}
+
+impl ControllerConfig {
+    /// The defaults, the one place they are written: a hemicylindrical silicone fingertip
+    /// in the paper's range: `μ = 0.8`, `k = 2`, no skew, `a = 2.5 mm · N^{1/2}`,
+    /// `l = 10 mm`, `s = 1.3`, 0.2–20 N, 1 kHz, ellipse mode, no actuator lead.
+    pub const DEFAULT: Self = Self {
+        mu: 0.8,
+        shape: FingerShape::Rect,
+        k: 2.0,
+        skew: None,
+        c_m_per_n_gamma: 2.5e-3,
+        gamma: 0.5,
+        half_length_m: 10e-3,
+        safety: 1.3,
+        n_min_n: 0.2,
+        n_max_n: 20.0,
+        rise_rate_n_per_s: 400.0,
+        fall_rate_n_per_s: 20.0,
+        tick_period_s: 1e-3,
+        stale_timeout_s: 20e-3,
+        fault_force_n: 10.0,
+        force_range_n: 100.0,
+        moment_range_nm: 2.0,
+        mode: Mode::Ellipse,
+        force_nodes: 48,
+        quadrature_order: 28,
+        table_samples: 48,
+        aspect_count: 8,
+        actuator_lag_s: 0.0,
+        actuator_slew_n_per_s: f64::INFINITY,
+    };
 }
 
 fn positive(param: &'static str, v: f64) -> Result<(), ConfigError> {

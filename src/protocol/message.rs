@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::frame::MAX_FRAME_LEN;
 use crate::controller::{
-    ControllerConfig, FromTablesError, Measurement, SlipSignal, Status, TableError,
+    ControllerConfig, FromTablesError, Measurement, SkewParams, SlipSignal, Status, TableError,
 };
 use crate::ConfigError;
 
@@ -22,15 +22,38 @@ pub const PROTOCOL_VERSION: u16 = 4;
 /// Every message, field and type on the wire, in order, plus the frame format. Its
 /// FNV-1a hash is [`SCHEMA_KEY`].
 ///
+/// `ControllerConfig`'s and `SkewParams`' parts are generated from their definitions
+/// ([`ControllerConfig::SCHEMA`], [`SkewParams::SCHEMA`]), so a field added there is
+/// described here by itself. The rest is written by hand below.
+///
 /// How to update: whenever a message, one of its fields (name, type, order), an enum
-/// variant (including those of `Status`, `ControllerConfig`, `FingerShape`, `SkewParams`,
-/// `Mode`) or the frame format changes, edit this string so it describes the new
-/// definitions. `tests/protocol.rs` (`schema_key_is_pinned`) then fails: add a new line to
-/// its `SCHEMA_HISTORY` with the new key and the new golden digest it prints. That test
-/// also fails when the encoding changes while this string does not (the golden digest
-/// moves but the key does not), and its exhaustive matches stop compiling when a variant
-/// or field is added, so a change cannot slip through unnoticed.
-pub const SCHEMA: &str = "\
+/// variant (including those of `Status`, `FingerShape`, `Mode`) or the frame format
+/// changes, edit the hand-written parts so they describe the new definitions.
+/// `tests/protocol.rs` (`schema_key_is_pinned`) then fails (as it does when a
+/// `ControllerConfig` field changes): add a new line to its `SCHEMA_HISTORY` with the new
+/// key and the new golden digest it prints. That test also fails when the encoding changes
+/// while this string does not (the golden digest moves but the key does not), and its
+/// exhaustive matches stop compiling when a variant or a message field is added, so a
+/// change cannot slip through unnoticed.
+pub const SCHEMA: &str = {
+    const PARTS: [&str; 7] = [
+        SCHEMA_MESSAGES,
+        ";",
+        ControllerConfig::SCHEMA,
+        ";FingerShape{Rect,Disc};",
+        SkewParams::SCHEMA,
+        ";",
+        "Mode{Ellipse,Table}",
+    ];
+    const BYTES: [u8; total_len(&PARTS)] = concat_bytes(&PARTS);
+    match core::str::from_utf8(&BYTES) {
+        Ok(s) => s,
+        Err(_) => panic!("SCHEMA is not UTF-8"),
+    }
+};
+
+/// The hand-written part of [`SCHEMA`]: the frame and the messages.
+const SCHEMA_MESSAGES: &str = "\
 softgrip-protocol;\
 frame=cobs(postcard(msg)+crc32_iscsi_le(postcard(msg)))+0x00;\
 Request{Hello{version:u16,schema_key:u32},Configure(ControllerConfig),Sensor(SensorFrame),\
@@ -50,16 +73,38 @@ Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_s
 ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
 cost_unit:CostUnit,stale_frames:u32,idle_ticks:u32,command_n:f32,fault_active:bool};\
 CostUnit{Nanoseconds,Instructions,Cycles};\
-WireConfigError{param:String<32>,message:String<96>};\
-ControllerConfig{mu:f64,shape:FingerShape,k:f64,skew:Option<SkewParams>,\
-c_m_per_n_gamma:f64,gamma:f64,half_length_m:f64,safety:f64,n_min_n:f64,n_max_n:f64,\
-rise_rate_n_per_s:f64,fall_rate_n_per_s:f64,tick_period_s:f64,stale_timeout_s:f64,\
-fault_force_n:f64,force_range_n:f64,moment_range_nm:f64,mode:Mode,force_nodes:u16,\
-quadrature_order:u16,table_samples:u16,aspect_count:u16,actuator_lag_s:f64,\
-actuator_slew_n_per_s:f64};\
-FingerShape{Rect,Disc};\
-SkewParams{delta_over_a:f64,alpha:f64,locus_over_a:f64};\
-Mode{Ellipse,Table}";
+WireConfigError{param:String<32>,message:String<96>}";
+
+/// The summed lengths of `parts` (at compile time).
+const fn total_len(parts: &[&str]) -> usize {
+    let mut len = 0;
+    let mut rest = parts;
+    while let Some((part, tail)) = rest.split_first() {
+        len += part.len();
+        rest = tail;
+    }
+    len
+}
+
+/// `parts` one after the other, as bytes (at compile time: `N` must be their
+/// [`total_len`], or the build fails).
+#[allow(clippy::indexing_slicing)] // evaluated by the compiler: out of bounds fails the build
+const fn concat_bytes<const N: usize>(parts: &[&str]) -> [u8; N] {
+    let mut out = [0u8; N];
+    let mut at = 0;
+    let mut rest = parts;
+    while let Some((part, tail)) = rest.split_first() {
+        let mut bytes = part.as_bytes();
+        while let Some((&b, more)) = bytes.split_first() {
+            out[at] = b;
+            at += 1;
+            bytes = more;
+        }
+        rest = tail;
+    }
+    assert!(at == N, "concat_bytes: N is not the parts' total length");
+    out
+}
 
 /// A key that changes whenever the message definitions change: the 32-bit FNV-1a hash of
 /// [`SCHEMA`]. Both ends exchange it in `Hello` and refuse to talk on a mismatch.

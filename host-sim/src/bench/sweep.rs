@@ -9,6 +9,7 @@ use crate::sim::run::{self, RunOptions};
 use crate::sim::scene::Scene;
 use crate::sim::truth::Truth;
 use serde::Serialize;
+use softgrip::controller::ControllerConfig;
 use std::path::Path;
 
 /// A controller and the knob it is swept over.
@@ -24,7 +25,11 @@ pub struct Sweep {
     pub default: f64,
 }
 
-/// Safety factors swept for softgrip (default 1.3).
+/// The controller's default safety factor ([`ControllerConfig::DEFAULT`]), also the
+/// model-based baselines' default.
+const DEFAULT_SAFETY: f64 = ControllerConfig::DEFAULT.safety;
+
+/// Safety factors swept for softgrip (around the default 1.3).
 const SOFTGRIP_SAFETY: &[f64] = &[1.0, 1.1, 1.2, 1.25, 1.3, 1.35, 1.4, 1.5, 1.75, 2.0];
 /// Safety factors swept for the model-based baselines (default 1.3, as softgrip's).
 const BASELINE_SAFETY: &[f64] = &[1.0, 1.3, 1.6, 2.0, 3.0];
@@ -35,13 +40,13 @@ pub const SWEEPS: [Sweep; 7] = [
         controller: "softgrip",
         knob: "safety",
         values: SOFTGRIP_SAFETY,
-        default: 1.3,
+        default: DEFAULT_SAFETY,
     },
     Sweep {
         controller: "softgrip-table",
         knob: "safety",
         values: SOFTGRIP_SAFETY,
-        default: 1.3,
+        default: DEFAULT_SAFETY,
     },
     Sweep {
         controller: "constant",
@@ -53,19 +58,19 @@ pub const SWEEPS: [Sweep; 7] = [
         controller: "coulomb",
         knob: "safety",
         values: BASELINE_SAFETY,
-        default: 1.3,
+        default: DEFAULT_SAFETY,
     },
     Sweep {
         controller: "box",
         knob: "safety",
         values: BASELINE_SAFETY,
-        default: 1.3,
+        default: DEFAULT_SAFETY,
     },
     Sweep {
         controller: "fixed-torsion",
         knob: "safety",
         values: BASELINE_SAFETY,
-        default: 1.3,
+        default: DEFAULT_SAFETY,
     },
     // The slip servo has no model to scale: its knob is the force it relaxes to.
     Sweep {

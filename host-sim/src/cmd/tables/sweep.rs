@@ -39,7 +39,7 @@ pub(super) fn sweep(out: &Path, quiet: bool) -> Result<(), CliError> {
             let table = FlsTable::<f64, 129>::sweep(&model, 128).map_err(|e| e.to_string())?;
             let gap = RadialGap::find(&model, &table);
             // The force a contact of fixed size (γ = 0, a = l/aspect with l = 10 mm) needs
-            // for 1 N and 5 mN·m with s = 1.3, by the exact surface.
+            // for 1 N and 5 mN·m with the default safety factor, by the exact surface.
             let cfg = ControllerConfig {
                 mu,
                 shape: FingerShape::Rect,
@@ -57,7 +57,7 @@ pub(super) fn sweep(out: &Path, quiet: bool) -> Result<(), CliError> {
             let cfg = cfg.check().map_err(|e| e.to_string())?;
             let n_req = Controller::<f64>::from_checked(&cfg)
                 .map_err(|e| e.to_string())?
-                .required_force(1.0, 0.005, 1.3)
+                .required_force(1.0, 0.005, ControllerConfig::DEFAULT.safety)
                 .map_or(f64::NAN, |s| s.force_n);
             b.inc(1);
             Ok(format!(

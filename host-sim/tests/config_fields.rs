@@ -55,7 +55,7 @@ fn the_schema_lists_every_field_in_order_with_its_type() {
 
 #[test]
 fn text_gives_any_subset_and_an_unknown_key_is_refused_by_name() {
-    let cfg: ControllerConfig = toml::from_str("safety = 1.5\nmode = \"Table\"\n").unwrap();
+    let cfg: ControllerConfig = toml::from_str("safety = 1.5\nmode = \"table\"\n").unwrap();
     assert_eq!(
         cfg,
         ControllerConfig {

@@ -15,7 +15,7 @@ const MAX_LINES: usize = 80;
 /// (`FILE::NAME`, the file relative to `host-sim/src`). Each must be over the limit: one
 /// that is no longer fails the test, so the list cannot go stale. To be emptied once those
 /// parts are merged.
-const ALLOWED_OVER: [&str; 2] = ["cmd/simulate/mod.rs::run_cmd", "sim/scene/mod.rs::check"];
+const ALLOWED_OVER: [&str; 1] = ["sim/scene/mod.rs::check"];
 
 /// One function: its name, the line of its `fn` keyword (1-based) and its length in lines.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -7,6 +7,7 @@ use target::target_report;
 pub use target::{check_firmware, elf_sections, Spread, TargetReport};
 
 use crate::input::short;
+use crate::link::handed;
 use crate::link::qemu::default_paths;
 use crate::sim::controllers::{self, LinkKind};
 use crate::sim::record::{RunSummary, Sample};
@@ -17,6 +18,7 @@ use crate::sim::stream::RunStream;
 use crate::sim::trace::PlotTrace;
 use crate::CliError;
 use clap::Args;
+use softgrip::controller::{Checked, Libm, Mode};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `host-sim simulate`.
@@ -172,46 +174,72 @@ fn write_scene_plots(
     Ok(())
 }
 
-/// Runs `host-sim simulate`.
+/// Runs `host-sim simulate`: every scene is loaded and checked before the first run (a bad
+/// one is a usage error before any output), then each runs against each controller.
 pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
-    let link = match args.link.as_str() {
+    let link = link_kind(args)?;
+    let paths = scenes(args)?;
+    let names = controllers(args)?;
+    check_link_use(args, &link, paths.len(), &names)?;
+    let loaded = load_scenes(args, &paths, &names, &link)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
+    let all = run_all(args, &loaded, &names, &link)?;
+    write_summary(&args.out.join("summary.json"), &link, &all)?;
+    print_report(args, &all, names.len() > 1 || loaded.len() > 1);
+    Ok(())
+}
+
+/// The link `--link` names (with its port, firmware and QEMU paths).
+fn link_kind(args: &SimulateArgs) -> Result<LinkKind, CliError> {
+    Ok(match args.link.as_str() {
         "inprocess" => LinkKind::InProcess,
         "direct" => LinkKind::Direct,
         "qemu" => {
-            // The ELF is checked below, once the controllers are known to need it.
+            // The ELF is checked in check_link_use, once the controllers need it.
             let (qemu_dir, firmware) = default_paths();
-            let firmware = args.firmware.clone().unwrap_or(firmware);
             LinkKind::Qemu {
                 qemu_dir: args.qemu.clone().unwrap_or(qemu_dir),
-                firmware,
+                firmware: args.firmware.clone().unwrap_or(firmware),
             }
         }
-        "serial" => {
-            let Some(port) = args.port.clone() else {
-                return Err(CliError::Usage(
-                    "--link serial needs --port PATH (the device's serial port)".into(),
-                ));
-            };
-            if !port.exists() {
-                return Err(CliError::Usage(format!(
-                    "--port: {} does not exist",
-                    port.display()
-                )));
-            }
-            LinkKind::Serial {
-                port,
-                baud: args.baud,
-            }
-        }
+        "serial" => serial_link(args)?,
         other => {
             return Err(CliError::Usage(format!(
                 "--link: \"{}\" is not a link, expected inprocess, direct, qemu or serial",
                 short(other)
             )))
         }
+    })
+}
+
+/// `--link serial`: its `--port` must be given and exist.
+fn serial_link(args: &SimulateArgs) -> Result<LinkKind, CliError> {
+    let Some(port) = args.port.clone() else {
+        return Err(CliError::Usage(
+            "--link serial needs --port PATH (the device's serial port)".into(),
+        ));
     };
-    let paths = scenes(args)?;
-    let names = controllers(args)?;
+    if !port.exists() {
+        return Err(CliError::Usage(format!(
+            "--port: {} does not exist",
+            port.display()
+        )));
+    }
+    Ok(LinkKind::Serial {
+        port,
+        baud: args.baud,
+    })
+}
+
+/// Refuses a link no controller would use, a missing firmware ELF, and more than one run
+/// on a board.
+fn check_link_use(
+    args: &SimulateArgs,
+    link: &LinkKind,
+    scenes: usize,
+    names: &[String],
+) -> Result<(), CliError> {
     // Only softgrip runs on the device; the baselines always run in this process.
     if args.link != "inprocess" && !names.iter().any(|n| n.starts_with("softgrip")) {
         return Err(CliError::Usage(format!(
@@ -222,10 +250,10 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
             short(&args.controller)
         )));
     }
-    if let LinkKind::Qemu { firmware, .. } = &link {
+    if let LinkKind::Qemu { firmware, .. } = link {
         check_firmware(firmware).map_err(CliError::Usage)?;
     }
-    let device_runs = paths.len() * names.iter().filter(|n| n.starts_with("softgrip")).count();
+    let device_runs = scenes * names.iter().filter(|n| n.starts_with("softgrip")).count();
     if matches!(link, LinkKind::Serial { .. }) && device_runs > 1 {
         // A board keeps its controller between runs (a reconfiguration takes over the
         // running grasp), so a second run would not start from rest as the others do.
@@ -234,127 +262,192 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
              device keeps its grasp between runs; reset it between invocations"
         )));
     }
+    Ok(())
+}
+
+/// Every scene, with `--finger` and the configuration flags applied, checked.
+fn load_scenes(
+    args: &SimulateArgs,
+    paths: &[PathBuf],
+    names: &[String],
+    link: &LinkKind,
+) -> Result<Vec<(Scene, Checked)>, CliError> {
     let finger = match &args.finger {
         Some(path) => Some(crate::finger_file::FingerFile::load(path, "--finger")?),
         None => None,
     };
     let overrides = args.config.table()?;
     let mut loaded = Vec::new();
-    for p in &paths {
+    for p in paths {
         let scene = Scene::load(p).map_err(|e| CliError::Usage(e.to_string()))?;
-        let scene = match &finger {
+        let mut scene = match &finger {
             Some(f) => scene
                 .with_finger(f.finger.clone(), f.controller.number("mu"))
                 .map_err(|e| CliError::Usage(format!("--finger: {e}")))?,
             None => scene,
         };
-        let mut scene = scene;
         scene.controller.config.extend(overrides.clone());
-        // Settings are checked here, before any run, so a bad one is a usage error.
         let shown = short(&p.display().to_string());
-        scene
-            .pipeline()
+        let cfg = check_scene(&scene, names, link)
             .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
-        let cfg = crate::sim::run::controller_config(&scene)
-            .map_err(|e| CliError::Usage(format!("{shown}: {e}")))?;
-        // The precomputation's own refusals (an l/a it cannot sample, an overflowing
-        // sensor range) as usage errors naming the scene's keys: the device would only say
-        // that its configuration failed.
-        softgrip::controller::Controller::<f32>::from_checked(&cfg).map_err(|e| {
-            let e = crate::sim::run::build_error(&e, &scene.controller, &cfg);
-            CliError::Usage(format!("{shown}: {e}"))
-        })?;
-        // The baselines' fixed patch (at controller.constant_force_n).
-        let constant_n = scene
-            .controller
-            .constant_force_n
-            .unwrap_or(cfg.fault_force_n);
-        for c in names.iter().filter(|c| !c.starts_with("softgrip")) {
-            controllers::Baseline::new(c, &cfg, constant_n).map_err(|e| {
-                CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
-            })?;
-        }
         loaded.push((scene, cfg));
     }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
+    Ok(loaded)
+}
+
+/// Checks a scene's settings before any run, so a bad one is a usage error: its effects,
+/// its configuration (once), the precomputation of each softgrip mode that will run, and
+/// the baselines' patch. On an in-process link the precomputed controllers are the ones
+/// the runs use ([`handed`]); the firmware in QEMU or on a board precomputes its own.
+fn check_scene(scene: &Scene, names: &[String], link: &LinkKind) -> Result<Checked, String> {
+    scene.pipeline().map_err(|e| e.to_string())?;
+    let cfg = crate::sim::run::controller_config(scene).map_err(|e| e.to_string())?;
+    let in_process = matches!(link, LinkKind::InProcess | LinkKind::Direct);
+    let mut modes: Vec<Mode> = names
+        .iter()
+        .filter_map(|n| softgrip_mode(n, &cfg))
+        .collect();
+    modes.dedup();
+    if !in_process {
+        // The device would only say that its configuration failed: check one mode here.
+        modes.truncate(1);
+    }
+    for mode in modes {
+        // The precomputation's own refusals (an l/a it cannot sample, an overflowing
+        // sensor range), named by the scene's keys.
+        let checked = cfg.with_mode(mode);
+        let built = if in_process {
+            handed::precompute::<Libm>(&checked).map(drop)
+        } else {
+            softgrip::controller::Controller::<f32>::from_checked(&checked).map(drop)
+        };
+        built.map_err(|e| {
+            crate::sim::run::build_error(&e, &scene.controller, &checked).to_string()
+        })?;
+    }
+    // The baselines' fixed patch (at controller.constant_force_n).
+    let constant_n = scene
+        .controller
+        .constant_force_n
+        .unwrap_or(cfg.fault_force_n);
+    for c in names.iter().filter(|c| !c.starts_with("softgrip")) {
+        controllers::Baseline::new(c, &cfg, constant_n)?;
+    }
+    Ok(cfg)
+}
+
+/// The mode softgrip controller `name` runs in on a scene configured `cfg`; `None` for a
+/// baseline.
+fn softgrip_mode(name: &str, cfg: &Checked) -> Option<Mode> {
+    match name {
+        "softgrip" => Some(cfg.mode),
+        "softgrip-ellipse" => Some(Mode::Ellipse),
+        "softgrip-table" => Some(Mode::Table),
+        _ => None,
+    }
+}
+
+/// Runs every scene against every controller, streaming each run to its CSV and drawing
+/// each scene's plots.
+fn run_all(
+    args: &SimulateArgs,
+    loaded: &[(Scene, Checked)],
+    names: &[String],
+    link: &LinkKind,
+) -> Result<Vec<RunSummary>, CliError> {
     let total: u64 = loaded
         .iter()
         .map(|(s, _)| (s.duration_s * s.tick_hz).round() as u64 * names.len() as u64)
         .sum();
     let bar = crate::progress::bar(total, "ticks", args.quiet);
     let mut all: Vec<RunSummary> = Vec::new();
-    for (scene, cfg) in &loaded {
+    for (scene, cfg) in loaded {
         let mut runs = Vec::new();
-        for c in &names {
+        for c in names {
             bar.set_message(format!("{} / {c}", scene.name));
-            // Each tick goes to the CSV as it is produced; the plots get a bounded trace.
-            let path = csv_path(&args.out, &scene.name, c);
-            let mut stream = RunStream::create(&path)
-                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
-            let out = run_streaming(
-                scene,
-                cfg,
-                c,
-                &link,
-                Some(&bar),
-                RunOptions::default(),
-                &mut stream,
-            )
-            .map_err(CliError::Failed)?;
-            let trace = stream
-                .finish()
-                .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
-            runs.push((out, trace));
+            runs.push(run_one(&args.out, scene, cfg, c, link, &bar)?);
         }
         write_scene_plots(&args.out, &scene.name, &runs)?;
         all.extend(runs.into_iter().map(|(r, _)| r.summary));
     }
     bar.finish_and_clear();
-    let summary_path = args.out.join("summary.json");
-    match &link {
+    Ok(all)
+}
+
+/// One run; each tick goes to the CSV as it is produced, the plots get a bounded trace.
+fn run_one(
+    out: &Path,
+    scene: &Scene,
+    cfg: &Checked,
+    controller: &str,
+    link: &LinkKind,
+    bar: &indicatif::ProgressBar,
+) -> Result<(RunOutput, PlotTrace), CliError> {
+    let path = csv_path(out, &scene.name, controller);
+    let mut stream = RunStream::create(&path)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
+    let run = run_streaming(
+        scene,
+        cfg,
+        controller,
+        link,
+        Some(bar),
+        RunOptions::default(),
+        &mut stream,
+    )
+    .map_err(CliError::Failed)?;
+    let trace = stream
+        .finish()
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", path.display())))?;
+    Ok((run, trace))
+}
+
+/// summary.json: the runs, and on QEMU the firmware's costs on the target.
+fn write_summary(path: &Path, link: &LinkKind, all: &[RunSummary]) -> Result<(), CliError> {
+    match link {
         LinkKind::InProcess | LinkKind::Direct | LinkKind::Serial { .. } => {
-            report::write_summary_json(&summary_path, &all)
-                .map_err(|e| CliError::Failed(format!("--out: {e}")))?
+            report::write_summary_json(path, all)
+                .map_err(|e| CliError::Failed(format!("--out: {e}")))
         }
         LinkKind::Qemu { firmware, .. } => {
-            let target = target_report(firmware, &all)?;
+            let target = target_report(firmware, all)?;
             println!("{}", target.describe());
             let text = serde_json::to_string_pretty(&serde_json::json!({
                 "runs": all,
                 "target": target,
             }))
             .map_err(|e| CliError::Failed(e.to_string()))?;
-            std::fs::write(&summary_path, text + "\n")
-                .map_err(|e| CliError::Failed(format!("--out: {e}")))?;
+            std::fs::write(path, text + "\n").map_err(|e| CliError::Failed(format!("--out: {e}")))
         }
     }
-    print!("{}", report::summary_table(&all));
+}
+
+/// The summary table, each softgrip run's speed and step costs, and (for more than one
+/// run) the comparison table.
+fn print_report(args: &SimulateArgs, all: &[RunSummary], compare: bool) {
+    print!("{}", report::summary_table(all));
     println!();
-    for r in &all {
-        if r.controller.starts_with("softgrip") {
-            let shares: Vec<String> = r
-                .step_cost_share
-                .iter()
-                .map(|(k, v)| format!("{k} {:.0} %", 100.0 * v))
-                .collect();
-            println!(
-                "{} / {}: real-time factor {:.1} ({} link), {} ticks in {:.2} s; \
-                 plant step cost: {}",
-                r.scene,
-                r.controller,
-                r.real_time_factor,
-                args.link,
-                r.ticks,
-                r.wall_s,
-                shares.join(", ")
-            );
-        }
+    for r in all.iter().filter(|r| r.controller.starts_with("softgrip")) {
+        let shares: Vec<String> = r
+            .step_cost_share
+            .iter()
+            .map(|(k, v)| format!("{k} {:.0} %", 100.0 * v))
+            .collect();
+        println!(
+            "{} / {}: real-time factor {:.1} ({} link), {} ticks in {:.2} s; \
+             plant step cost: {}",
+            r.scene,
+            r.controller,
+            r.real_time_factor,
+            args.link,
+            r.ticks,
+            r.wall_s,
+            shares.join(", ")
+        );
     }
-    if names.len() > 1 || loaded.len() > 1 {
+    if compare {
         println!();
-        print!("{}", report::comparison_table(&all));
+        print!("{}", report::comparison_table(all));
     }
     println!("wrote {}", args.out.display());
-    Ok(())
 }

@@ -5,10 +5,11 @@ use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
 use serde::{Deserialize, Serialize};
 
-/// Defines a struct of named fields and, from the same field list, two constants on it:
-/// `FIELDS`, the field names in declaration order, and `SCHEMA`, its part of the
-/// protocol's [`SCHEMA`](crate::protocol::SCHEMA) (`Name{field:type,...}`, types as
-/// written). So a field is written once, and the wire's description follows it.
+/// Defines a struct of named fields and, from the same field list, three constants on it:
+/// `FIELDS`, the field names in declaration order, `SCHEMA`, its part of the protocol's
+/// [`SCHEMA`](crate::protocol::SCHEMA) (`Name{field:type,...}`, types as written), and
+/// its [`WireMaxLen::WIRE_MAX_LEN`]. So a field is written once, and the wire's
+/// description and buffer sizes follow it.
 macro_rules! with_schema {
     (
         $(#[$meta:meta])*
@@ -34,7 +35,45 @@ macro_rules! with_schema {
                 $(",", stringify!($f), ":", stringify!($t),)* "}"
             );
         }
+
+        impl WireMaxLen for $name {
+            const WIRE_MAX_LEN: usize =
+                <$t0 as WireMaxLen>::WIRE_MAX_LEN $(+ <$t as WireMaxLen>::WIRE_MAX_LEN)*;
+        }
     };
+}
+
+/// The most bytes a value of the type takes in postcard, the wire's encoding: the
+/// protocol's buffers ([`MAX_MESSAGE_LEN`](crate::protocol::MAX_MESSAGE_LEN)) are sized
+/// from it, so a new configuration field resizes them by itself (tests/protocol.rs checks
+/// the bound is met and tight on the largest message).
+pub trait WireMaxLen {
+    /// The bound [bytes].
+    const WIRE_MAX_LEN: usize;
+}
+
+impl WireMaxLen for f64 {
+    const WIRE_MAX_LEN: usize = 8;
+}
+
+/// A varint: 7 bits a byte.
+impl WireMaxLen for u16 {
+    const WIRE_MAX_LEN: usize = 3;
+}
+
+/// A presence byte, then the value.
+impl<T: WireMaxLen> WireMaxLen for Option<T> {
+    const WIRE_MAX_LEN: usize = 1 + T::WIRE_MAX_LEN;
+}
+
+/// A unit variant's index, one varint byte (fewer than 128 variants).
+impl WireMaxLen for FingerShape {
+    const WIRE_MAX_LEN: usize = 1;
+}
+
+/// A unit variant's index, one varint byte (fewer than 128 variants).
+impl WireMaxLen for Mode {
+    const WIRE_MAX_LEN: usize = 1;
 }
 
 /// Which fingertip the contact belongs to: the one shape type of the crate and its tools

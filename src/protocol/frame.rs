@@ -6,6 +6,7 @@ use core::fmt;
 use core::marker::PhantomData;
 
 pub use crate::checksum::CRC;
+use crate::controller::{ControllerConfig, WireMaxLen};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -13,10 +14,12 @@ use serde::Serialize;
 pub const CRC_LEN: usize = 4;
 
 /// The longest postcard encoding of any [`Request`](super::Request) or
-/// [`Reply`](super::Reply): `Request::Configure` with `skew: Some(..)` and the widest
-/// varints (176 bytes). `tests/protocol.rs` checks it against the largest values of every
+/// [`Reply`](super::Reply): `Request::Configure` (its variant byte) with `skew: Some(..)`
+/// and the widest varints, sized from the configuration's own field list
+/// ([`WireMaxLen`]: 176 bytes with today's fields), so a new field resizes it.
+/// `tests/protocol.rs` checks it is met, and met exactly, by the largest values of every
 /// variant, so it cannot silently go stale.
-pub const MAX_MESSAGE_LEN: usize = 176;
+pub const MAX_MESSAGE_LEN: usize = 1 + ControllerConfig::WIRE_MAX_LEN;
 
 /// The greatest COBS encoding of `n` bytes, without the delimiter: one code byte per
 /// started run of 254 bytes, plus one (the classic `n + n/254 + 1` bound, which also
@@ -26,7 +29,8 @@ pub const fn cobs_max_len(n: usize) -> usize {
 }
 
 /// The longest frame on the wire, delimiter included:
-/// `cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1` = 182 bytes. An encode buffer of this size
+/// `cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1` (182 bytes with today's configuration). An
+/// encode buffer of this size
 /// always suffices.
 pub const MAX_FRAME_LEN: usize = cobs_max_len(MAX_MESSAGE_LEN + CRC_LEN) + 1;
 

@@ -8,7 +8,7 @@
 //! Each message travels as one frame:
 //!
 //! ```text
-//! P = postcard(message)                      1 ..= MAX_MESSAGE_LEN (160) bytes
+//! P = postcard(message)                      1 ..= MAX_MESSAGE_LEN (176) bytes
 //! C = CRC-32/ISCSI(P), little-endian         4 bytes
 //! frame = COBS(P ‖ C) ‖ 0x00                 len(P) + 6 ..= MAX_FRAME_LEN (182) bytes
 //! ```
@@ -22,15 +22,16 @@
 //! * `C` is CRC-32/ISCSI (Castagnoli: polynomial `0x1EDC6F41`, reflected, init and xorout
 //!   `0xFFFFFFFF`) of `P` alone, least significant byte first. It was chosen over a CRC-16
 //!   (about one corrupt frame in 65 536 would pass) and over the Ethernet CRC-32 because
-//!   for frames of this length (up to 164 bytes, 1312 bits) the Castagnoli polynomial
+//!   for frames of this length (up to 180 bytes, 1440 bits) the Castagnoli polynomial
 //!   still detects every error of up to 5 flipped bits (Hamming distance 6), where the
 //!   Ethernet polynomial guarantees only 4.
 //! * COBS (consistent overhead byte stuffing) with `0x00` as the sentinel: the block
-//!   contains no `0x00`, and is one byte longer than `P ‖ C` (which is at most 164 bytes,
+//!   contains no `0x00`, and is one byte longer than `P ‖ C` (which is at most 180 bytes,
 //!   below COBS's 254-byte run). A single `0x00` ends the frame.
 //!
 //! The longest frame is [`MAX_FRAME_LEN`] = 182 bytes (`Request::Configure` with a skew,
-//! 160 + 4 + 1 + 1); [`encode`] never needs a bigger buffer, and a
+//! 176 + 4 + 1 + 1; both lengths follow the configuration's fields, `WireMaxLen`, and
+//! are today's); [`encode`] never needs a bigger buffer, and a
 //! [`DefaultFrameDecoder`] holds any frame. For example `Request::GetStats` (`P` =
 //! `03`, `C` = `a5 a0 2d 41`) travels as the seven bytes
 //! `06 03 a5 a0 2d 41 00`.

@@ -31,6 +31,7 @@ pub mod bench;
 pub mod brush;
 pub mod cmd;
 pub mod config;
+pub mod exact;
 pub mod experiment;
 pub mod finger_file;
 pub mod input;

@@ -122,7 +122,7 @@ fn every_effect_runs_alone() {
         "effects = [\"gravity\", \"sensor_noise\"]",
         "effects = [\"gravity\", \"EFFECT\"]",
     );
-    for effect in host_sim::sim::effects::NAMES {
+    for &effect in host_sim::sim::effects::NAMES {
         if effect == "gravity" {
             continue;
         }

@@ -600,7 +600,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
             lines[i] = String::from_utf8_lossy(&bytes).into_owned();
         }
         6 => {
-            let effect = rng.pick(&host_sim::sim::effects::NAMES);
+            let effect = rng.pick(host_sim::sim::effects::NAMES);
             lines.push(format!("[effect.{effect}]"));
             let key = rng.pick(&[
                 "drop_prob",

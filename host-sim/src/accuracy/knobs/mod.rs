@@ -17,7 +17,7 @@
 //! - **costs**: host time of the start-up precomputation and of one tick, medians of
 //!   repeated runs on the rectangle.
 
-use super::exact::{exact_tick, ExactSurface, Finger, Rule};
+use crate::exact::{exact_tick, ExactSurface, Finger, Rule};
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Libm, Measurement, Micromath, Mode, TickMath,
 };

@@ -3,7 +3,9 @@
 //! compliant transmission), at most `slew_n_per_s`, and within `[0, max_force_n]` (its
 //! stall force).
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
+use rand_chacha::ChaCha8Rng;
 use super::{Effect, World};
 use serde::Deserialize;
 
@@ -37,6 +39,9 @@ impl Settings for ActuatorSettings {
             Range::new("slew_n_per_s", self.slew_n_per_s, 1e-6, 1e9),
             Range::new("max_force_n", self.max_force_n, 0.0, 1e9),
         ]
+    }
+    fn build(&self, _: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(Actuator::new(self)))
     }
 }
 

@@ -9,7 +9,9 @@
 //! with `a_eq = c·N^γ`. Right after a squeeze the patch is smaller than the controller's
 //! model assumes, so it resists less torsion.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
+use rand_chacha::ChaCha8Rng;
 use super::{Effect, World};
 use serde::Deserialize;
 
@@ -39,6 +41,9 @@ impl Settings for CreepSettings {
             Range::new("time_constant_s", self.time_constant_s, 1e-6, 1e6),
             Range::new("instant_fraction", self.instant_fraction, 0.0, 1.0),
         ]
+    }
+    fn build(&self, _: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(Creep::new(self)))
     }
 }
 

@@ -3,7 +3,8 @@
 //! sign). A common test load for grasp stability (e.g. the impulsive disturbances of
 //! slip-control experiments cited by the paper's introduction).
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
 use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -43,6 +44,9 @@ impl Settings for DisturbanceSettings {
             Range::new("moment_nm", self.moment_nm, 0.0, 1e6),
             Range::new("duration_s", self.duration_s, 1e-6, 1e3),
         ]
+    }
+    fn build(&self, rng: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(Disturbance::new(self, rng)))
     }
 }
 

@@ -5,7 +5,9 @@
 //! The weight comes onto the grasp as the object leaves its support: the scene's
 //! `support_fraction` (0 on the table, 1 once lifted) scales both.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
+use rand_chacha::ChaCha8Rng;
 use super::{Effect, World};
 use serde::Deserialize;
 
@@ -27,6 +29,9 @@ impl Settings for GravitySettings {
     const NAME: &'static str = "gravity";
     fn ranges(&self) -> Vec<Range> {
         vec![Range::new("g_m_s2", self.g_m_s2, 0.0, 1e3)]
+    }
+    fn build(&self, _: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(Gravity::new(self)))
     }
 }
 

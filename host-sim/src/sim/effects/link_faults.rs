@@ -4,7 +4,8 @@
 //! checks must catch them; the device counts them, and the plant counts what it dropped,
 //! so every frame is accounted for.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
 use super::{Effect, LinkFate};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -41,6 +42,9 @@ impl Settings for LinkFaultsSettings {
             Range::new("truncate_prob", self.truncate_prob, 0.0, 1.0),
             Range::new("drop_prob", self.drop_prob, 0.0, 1.0),
         ]
+    }
+    fn build(&self, rng: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(LinkFaults::new(self, rng)))
     }
 }
 

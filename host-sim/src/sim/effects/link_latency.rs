@@ -2,7 +2,9 @@
 //! was taken (a serial link at a fixed baud rate plus buffering), so the command answers
 //! an old load. Frames keep their order.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
+use rand_chacha::ChaCha8Rng;
 use super::{Effect, LinkFate};
 use serde::Deserialize;
 use softgrip::protocol::SensorFrame;
@@ -26,6 +28,9 @@ impl Settings for LinkLatencySettings {
     const NAME: &'static str = "link_latency";
     fn ranges(&self) -> Vec<Range> {
         vec![Range::new("delay_ticks", self.delay_ticks, 0.0, 1e5)]
+    }
+    fn build(&self, _: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(LinkLatency::new(self)))
     }
 }
 

@@ -5,8 +5,8 @@
 //!
 //! Each effect's module also declares its settings: a serde struct (`GravitySettings`,
 //! `SensorNoiseSettings`, ...) of its `[effect.NAME]` keys with their defaults and
-//! ranges ([`Settings`]); [`EffectSettings`] is one of them, and [`settings`] lists the
-//! effects ([`NAMES`]). The scene reads and checks every listed effect's settings once,
+//! ranges ([`Settings`], in [`spec`]); [`EffectSettings`] is one of them, and the
+//! registry below lists the effects ([`NAMES`]). The scene reads and checks every listed effect's settings once,
 //! when it is parsed
 //! ([`Scene::effect_settings`](crate::sim::scene::Scene::effect_settings)); [`build`]
 //! then makes each effect from its own struct and what it needs besides (its random
@@ -25,25 +25,79 @@
 //! Skewed pressure in the true contact changes the true limit surface itself, so it acts
 //! when the ground truth is built ([`Effect::true_skew`]).
 
-pub mod actuator;
-pub mod creep;
-pub mod disturbance;
-pub mod gravity;
-pub mod link_faults;
-pub mod link_latency;
-pub mod partial_slip;
-pub mod sensor_faults;
-pub mod sensor_noise;
-pub mod settings;
-pub mod skewed_pressure;
-pub mod slip_sensor;
+pub mod spec;
+
+/// The registry: declares each effect's module and, from the same list, [`NAMES`] and
+/// [`EffectSettings`] (its variants, reading one by name, its name, building its effect).
+/// A new effect is its file (its settings struct implementing [`Settings`], with `NAME`
+/// and `build`) plus one line in the list below.
+macro_rules! effects {
+    ($($module:ident :: $settings:ident => $variant:ident,)*) => {
+        $(pub mod $module;)*
+
+        /// Every effect a scene may list, in pipeline order.
+        pub const NAMES: &[&str] = &[$(<$module::$settings as Settings>::NAME),*];
+
+        /// One listed effect's settings.
+        #[derive(Debug, Clone, PartialEq)]
+        #[allow(missing_docs)]
+        pub enum EffectSettings {
+            $($variant($module::$settings),)*
+        }
+
+        impl EffectSettings {
+            /// The settings of the effect called `name`, read from `source`; `None` if no
+            /// effect has that name (the names are [`NAMES`]).
+            pub fn read<S: Source>(name: &str, source: &mut S) -> Option<Result<Self, S::Error>> {
+                $(if name == <$module::$settings as Settings>::NAME {
+                    return Some(source.read().map(Self::$variant));
+                })*
+                None
+            }
+
+            /// The effect's name.
+            pub fn name(&self) -> &'static str {
+                match self {
+                    $(Self::$variant(_) => <$module::$settings as Settings>::NAME,)*
+                }
+            }
+
+            /// Each setting with its allowed range.
+            pub fn ranges(&self) -> Vec<Range> {
+                match self {
+                    $(Self::$variant(s) => s.ranges(),)*
+                }
+            }
+
+            fn build(&self, rng: ChaCha8Rng, finger: &Finger) -> Result<Box<dyn Effect>, String> {
+                match self {
+                    $(Self::$variant(s) => s.build(rng, finger),)*
+                }
+            }
+        }
+    };
+}
+
+effects! {
+    gravity::GravitySettings => Gravity,
+    disturbance::DisturbanceSettings => Disturbance,
+    sensor_noise::SensorNoiseSettings => SensorNoise,
+    sensor_faults::SensorFaultsSettings => SensorFaults,
+    slip_sensor::SlipSensorSettings => SlipSensor,
+    link_latency::LinkLatencySettings => LinkLatency,
+    link_faults::LinkFaultsSettings => LinkFaults,
+    actuator::ActuatorSettings => Actuator,
+    creep::CreepSettings => Creep,
+    partial_slip::PartialSlipSettings => PartialSlip,
+    skewed_pressure::SkewedPressureSettings => SkewedPressure,
+}
 
 use crate::sim::finger::Finger;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-pub use settings::{EffectSettings, Range, Settings, Source, NAMES};
 use softgrip::controller::SkewParams;
 use softgrip::protocol::SensorFrame;
+pub use spec::{Range, Settings, Source};
 use std::time::{Duration, Instant};
 
 /// The plant's state as the effects see it during one step. Loads are on the whole
@@ -155,22 +209,7 @@ pub fn build(
     seed: u64,
     finger: &Finger,
 ) -> Result<Box<dyn Effect>, String> {
-    let rng = || rng(seed, settings.name());
-    Ok(match settings {
-        EffectSettings::Gravity(s) => Box::new(gravity::Gravity::new(s)),
-        EffectSettings::Disturbance(s) => Box::new(disturbance::Disturbance::new(s, rng())),
-        EffectSettings::SensorNoise(s) => Box::new(sensor_noise::SensorNoise::new(s, rng())?),
-        EffectSettings::SensorFaults(s) => Box::new(sensor_faults::SensorFaults::new(s, rng())),
-        EffectSettings::SlipSensor(s) => Box::new(slip_sensor::SlipSensor::new(s, rng())),
-        EffectSettings::LinkLatency(s) => Box::new(link_latency::LinkLatency::new(s)),
-        EffectSettings::LinkFaults(s) => Box::new(link_faults::LinkFaults::new(s, rng())),
-        EffectSettings::Actuator(s) => Box::new(actuator::Actuator::new(s)),
-        EffectSettings::Creep(s) => Box::new(creep::Creep::new(s)),
-        EffectSettings::PartialSlip(s) => Box::new(partial_slip::PartialSlip::new(s, finger)?),
-        EffectSettings::SkewedPressure(s) => {
-            Box::new(skewed_pressure::SkewedPressure::new(s, finger))
-        }
-    })
+    settings.build(rng(seed, settings.name()), finger)
 }
 
 impl Pipeline {
@@ -247,5 +286,32 @@ impl Pipeline {
             .zip(&self.cost)
             .map(|(e, c)| (e.name().to_string(), *c))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod registry_tests {
+    use super::*;
+
+    /// A [`Source`] of the defaults.
+    struct Defaults;
+
+    impl Source for Defaults {
+        type Error = std::convert::Infallible;
+        fn read<T: Settings>(&mut self) -> Result<T, Self::Error> {
+            Ok(T::default())
+        }
+    }
+
+    #[test]
+    fn every_name_has_its_settings_and_every_default_lies_in_its_range() {
+        for name in NAMES {
+            let s = EffectSettings::read(name, &mut Defaults).unwrap().unwrap();
+            assert_eq!(s.name(), *name);
+            for r in s.ranges() {
+                assert!(r.holds(), "{name}.{}: {r:?}", r.key);
+            }
+        }
+        assert!(EffectSettings::read("nope", &mut Defaults).is_none());
     }
 }

@@ -5,7 +5,8 @@
 //! micro-displacement a tactile sensor would see before the object moves); the largest
 //! value is a run metric.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use rand_chacha::ChaCha8Rng;
 use super::{Effect, World};
 use crate::sim::finger::Finger;
 use serde::Deserialize;
@@ -20,6 +21,9 @@ impl Settings for PartialSlipSettings {
     const NAME: &'static str = "partial_slip";
     fn ranges(&self) -> Vec<Range> {
         Vec::new()
+    }
+    fn build(&self, _: ChaCha8Rng, finger: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(PartialSlip::new(self, finger)?))
     }
 }
 

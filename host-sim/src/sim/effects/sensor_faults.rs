@@ -3,7 +3,8 @@
 //! saturation (every channel clipped at the sensor's range, silently, as an overloaded
 //! strain gauge does).
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
 use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -44,6 +45,9 @@ impl Settings for SensorFaultsSettings {
             Range::new("saturation_n", self.saturation_n, 0.0, f64::INFINITY),
             Range::new("saturation_nm", self.saturation_nm, 0.0, f64::INFINITY),
         ]
+    }
+    fn build(&self, rng: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(SensorFaults::new(self, rng)))
     }
 }
 

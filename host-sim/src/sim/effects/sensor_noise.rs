@@ -2,7 +2,8 @@
 //! force/torque sensor, plus a constant bias on the tangential force and the moment (the
 //! usual error model of strain-gauge F/T sensors).
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
 use super::{Effect, World};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -47,6 +48,9 @@ impl Settings for SensorNoiseSettings {
             Range::new("bias_force_n", self.bias_force_n, -1e6, 1e6),
             Range::new("bias_moment_nm", self.bias_moment_nm, -1e6, 1e6),
         ]
+    }
+    fn build(&self, rng: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(SensorNoise::new(self, rng)?))
     }
 }
 

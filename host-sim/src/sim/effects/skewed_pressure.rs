@@ -3,7 +3,8 @@
 //! the true limit surface. The ground truth is then built from the skewed surface;
 //! the controller is not told (it models the symmetric profile).
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use rand_chacha::ChaCha8Rng;
 use super::Effect;
 use crate::sim::finger::Finger;
 use serde::Deserialize;
@@ -43,6 +44,9 @@ impl Settings for SkewedPressureSettings {
             r.push(Range::new("locus_over_a", locus, 0.0, 1.0));
         }
         r
+    }
+    fn build(&self, _: ChaCha8Rng, finger: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(SkewedPressure::new(self, finger)))
     }
 }
 

@@ -25,7 +25,8 @@
 //! It draws from its own random stream (seeded from the scene seed and its name), so
 //! listing it changes no other effect's random numbers.
 
-use super::settings::{Range, Settings};
+use super::spec::{Range, Settings};
+use crate::sim::finger::Finger;
 use super::{Effect, World};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -72,6 +73,9 @@ impl Settings for SlipSensorSettings {
             Range::new("miss_probability", self.miss_probability, 0.0, 1.0),
             Range::new("false_alarm_rate_hz", self.false_alarm_rate_hz, 0.0, 1e4),
         ]
+    }
+    fn build(&self, rng: ChaCha8Rng, _: &Finger) -> Result<Box<dyn Effect>, String> {
+        Ok(Box::new(SlipSensor::new(self, rng)))
     }
 }
 

@@ -155,7 +155,11 @@ mod tests {
 
     #[test]
     fn listed_effects_get_their_settings_in_pipeline_order_and_unlisted_ones_are_ignored() {
-        let all = NAMES.map(|n| format!("\"{n}\"")).join(", ");
+        let all = NAMES
+            .iter()
+            .map(|n| format!("\"{n}\""))
+            .collect::<Vec<_>>()
+            .join(", ");
         let s = scene(&all, "").unwrap();
         let names: Vec<&str> = s.effect_settings.iter().map(|e| e.name()).collect();
         assert_eq!(names, NAMES);

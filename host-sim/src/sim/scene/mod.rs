@@ -290,7 +290,7 @@ impl Scene {
     /// `effect.NAME.key` (and its line).
     fn read_effect_settings(&self, text: &str) -> Result<Vec<EffectSettings>, SceneError> {
         let mut settings = Vec::new();
-        for name in EFFECT_NAMES {
+        for &name in EFFECT_NAMES {
             if !self.effects.iter().any(|e| e == name) {
                 continue;
             }

@@ -1,5 +1,6 @@
-//! The exact answers the report measures against, and the "exact integration per tick"
-//! rule: docs/model.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
+//! The exact answers `host-sim accuracy` measures against and `host-sim required-force`
+//! compares with (a module of its own, so neither command imports the other's), and the
+//! "exact integration per tick" rule: docs/model.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
 //! surface integrated by [`FlsModel`] at every trial normal force.
 //!
 //! - [`Finger`]: the contact of a [`ControllerConfig`] (`a = c·N^γ`, `l/a(N)`).

@@ -16,7 +16,8 @@ pub mod plot;
 pub mod report;
 pub mod sweep;
 
-use crate::sim::controllers::LinkKind;
+use crate::args::LinkName;
+use crate::sim::controllers::{ControllerChoice, LinkKind};
 use crate::sim::run::{self, RunOptions};
 use crate::CliError;
 use clap::Args;
@@ -38,17 +39,18 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 17)]
     pub seed: u64,
     /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
-    /// slip-servo) or all.
-    #[arg(long, default_value = "all")]
-    pub controller: String,
+    /// slip-servo) or all; softgrip-ellipse is softgrip in the default mode, which bench
+    /// runs as `softgrip`.
+    #[arg(long, value_enum, default_value = "all")]
+    pub controller: ControllerChoice,
     /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
-    /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
-    /// sample of trials also runs over the pseudo-terminal and must give identical
-    /// results).
-    #[arg(long, default_value = "direct")]
-    pub link: String,
+    /// softgrip's link: direct (in memory, on the calling thread) or pty (alias
+    /// inprocess; then a sample of trials also runs over the pseudo-terminal and must
+    /// give identical results). qemu and serial are `simulate`'s only.
+    #[arg(long, value_enum, default_value = "direct")]
+    pub link: LinkName,
     /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
     #[arg(long)]
     pub trace: bool,
@@ -117,20 +119,19 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
                 ))
             })?]
     };
-    let sweeps: Vec<Sweep> = if args.controller == "all" {
-        SWEEPS.to_vec()
-    } else {
-        vec![*SWEEPS
+    let sweeps: Vec<Sweep> = match args.controller {
+        ControllerChoice::All => SWEEPS.to_vec(),
+        ControllerChoice::One(kind) => vec![*SWEEPS
             .iter()
-            .find(|s| s.controller == args.controller)
+            .find(|s| s.controller == kind.name())
             .ok_or_else(|| {
-                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
-                CliError::Usage(format!(
-                    "--controller: unknown controller \"{}\", expected all or one of {}",
-                    args.controller,
-                    names.join(", ")
-                ))
-            })?]
+            let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
+            CliError::Usage(format!(
+                "--controller: bench has no sweep of \"{}\", expected all or one of {}",
+                kind.name(),
+                names.join(", ")
+            ))
+        })?],
     };
     Ok((families, sweeps))
 }
@@ -200,12 +201,14 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
     if args.trials == 0 {
         return Err(CliError::Usage("--trials: must be at least 1".into()));
     }
-    let pty = match args.link.as_str() {
-        "direct" => false,
-        "pty" => true,
-        other => {
+    let pty = match args.link {
+        LinkName::Direct => false,
+        LinkName::Pty => true,
+        other @ (LinkName::Qemu | LinkName::Serial) => {
             return Err(CliError::Usage(format!(
-                "--link: \"{other}\" is not a link, expected direct or pty"
+                "--link {}: bench runs softgrip on the direct link, and over the pty as a \
+                 check; expected direct or pty (the firmware's links are simulate's)",
+                other.name()
             )))
         }
     };
@@ -268,7 +271,7 @@ pub fn run_cmd(args: &BenchArgs) -> Result<(), CliError> {
         &args.out.join("bench.json"),
         args.seed,
         args.trials,
-        &args.link,
+        args.link.name(),
         &all,
         &dominance,
     )

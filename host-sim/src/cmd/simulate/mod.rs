@@ -6,9 +6,10 @@ mod target;
 use target::target_report;
 pub use target::{check_firmware, elf_sections, Spread, TargetReport};
 
+use crate::args::LinkName;
 use crate::input::short;
 use crate::link::qemu::default_paths;
-use crate::sim::controllers::{self, LinkKind};
+use crate::sim::controllers::{self, ControllerChoice, ControllerKind, LinkKind};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::report;
 use crate::sim::run::{run_streaming, RunOptions, RunOutput};
@@ -30,16 +31,16 @@ pub struct SimulateArgs {
     /// The scenes folder for --all.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes"))]
     scenes: PathBuf,
-    /// The controller: softgrip (default mode), softgrip-ellipse, softgrip-table,
-    /// constant, coulomb, box, fixed-torsion, slip-servo, or all.
-    #[arg(long, default_value = "softgrip")]
-    controller: String,
-    /// The link to the device: `inprocess` (the firmware loop on a thread, over a
-    /// pseudo-terminal), `direct` (the same loop and bytes through memory, on this
+    /// The controllers, comma-separated: softgrip (default mode), softgrip-ellipse,
+    /// softgrip-table, constant, coulomb, box, fixed-torsion, slip-servo, or all.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "softgrip")]
+    controller: Vec<ControllerChoice>,
+    /// The link to the device: `pty` (alias `inprocess`: the firmware loop on a thread,
+    /// over a pseudo-terminal), `direct` (the same loop and bytes through memory, on this
     /// thread), `qemu` (the Cortex-M4F firmware in QEMU, over its USART) or `serial` (the
     /// firmware on a board, over the serial port --port).
-    #[arg(long, default_value = "inprocess")]
-    link: String,
+    #[arg(long, value_enum, default_value = "pty")]
+    link: LinkName,
     /// The serial port for `--link serial` (e.g. /dev/ttyUSB0, or a QEMU pty).
     #[arg(long)]
     port: Option<PathBuf>,
@@ -95,25 +96,8 @@ fn scenes(args: &SimulateArgs) -> Result<Vec<PathBuf>, CliError> {
     }
 }
 
-fn controllers(args: &SimulateArgs) -> Result<Vec<String>, CliError> {
-    if args.controller == "all" {
-        return Ok(controllers::ALL.iter().map(|s| s.to_string()).collect());
-    }
-    let names: Vec<String> = args
-        .controller
-        .split(',')
-        .map(|s| s.trim().to_string())
-        .collect();
-    for n in &names {
-        if !controllers::NAMES.contains(&n.as_str()) {
-            return Err(CliError::Usage(format!(
-                "--controller: unknown controller \"{}\", expected all or one of {}",
-                short(n),
-                controllers::NAMES.join(", ")
-            )));
-        }
-    }
-    Ok(names)
+fn controllers(args: &SimulateArgs) -> Vec<ControllerKind> {
+    ControllerChoice::kinds(&args.controller)
 }
 
 fn file_safe(s: &str) -> String {
@@ -174,10 +158,10 @@ fn write_scene_plots(
 
 /// Runs `host-sim simulate`.
 pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
-    let link = match args.link.as_str() {
-        "inprocess" => LinkKind::InProcess,
-        "direct" => LinkKind::Direct,
-        "qemu" => {
+    let link = match args.link {
+        LinkName::Pty => LinkKind::InProcess,
+        LinkName::Direct => LinkKind::Direct,
+        LinkName::Qemu => {
             // The ELF is checked below, once the controllers are known to need it.
             let (qemu_dir, firmware) = default_paths();
             let firmware = args.firmware.clone().unwrap_or(firmware);
@@ -186,7 +170,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 firmware,
             }
         }
-        "serial" => {
+        LinkName::Serial => {
             let Some(port) = args.port.clone() else {
                 return Err(CliError::Usage(
                     "--link serial needs --port PATH (the device's serial port)".into(),
@@ -203,29 +187,22 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 baud: args.baud,
             }
         }
-        other => {
-            return Err(CliError::Usage(format!(
-                "--link: \"{}\" is not a link, expected inprocess, direct, qemu or serial",
-                short(other)
-            )))
-        }
     };
     let paths = scenes(args)?;
-    let names = controllers(args)?;
+    let names = controllers(args);
     // Only softgrip runs on the device; the baselines always run in this process.
-    if args.link != "inprocess" && !names.iter().any(|n| n.starts_with("softgrip")) {
+    if args.link != LinkName::Pty && !names.iter().any(|k| k.is_softgrip()) {
+        let given = names.iter().map(|k| k.name()).collect::<Vec<_>>().join(",");
         return Err(CliError::Usage(format!(
-            "--link {}: --controller {} runs in this process, not over a link; \
-             add a softgrip controller (e.g. --controller softgrip,{}) or drop --link",
-            args.link,
-            short(&args.controller),
-            short(&args.controller)
+            "--link {}: --controller {given} runs in this process, not over a link; \
+             add a softgrip controller (e.g. --controller softgrip,{given}) or drop --link",
+            args.link.name(),
         )));
     }
     if let LinkKind::Qemu { firmware, .. } = &link {
         check_firmware(firmware).map_err(CliError::Usage)?;
     }
-    let device_runs = paths.len() * names.iter().filter(|n| n.starts_with("softgrip")).count();
+    let device_runs = paths.len() * names.iter().filter(|k| k.is_softgrip()).count();
     if matches!(link, LinkKind::Serial { .. }) && device_runs > 1 {
         // A board keeps its controller between runs (a reconfiguration takes over the
         // running grasp), so a second run would not start from rest as the others do.
@@ -269,8 +246,8 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
             .controller
             .constant_force_n
             .unwrap_or(cfg.fault_force_n);
-        for c in names.iter().filter(|c| !c.starts_with("softgrip")) {
-            controllers::Baseline::new(c, &cfg, constant_n).map_err(|e| {
+        for c in names.iter().filter(|c| !c.is_softgrip()) {
+            controllers::Baseline::new(c.name(), &cfg, constant_n).map_err(|e| {
                 CliError::Usage(format!("{}: {e}", short(&p.display().to_string())))
             })?;
         }
@@ -286,7 +263,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     let mut all: Vec<RunSummary> = Vec::new();
     for (scene, cfg) in &loaded {
         let mut runs = Vec::new();
-        for c in &names {
+        for c in names.iter().map(|k| k.name()) {
             bar.set_message(format!("{} / {c}", scene.name));
             // Each tick goes to the CSV as it is produced; the plots get a bounded trace.
             let path = csv_path(&args.out, &scene.name, c);
@@ -332,7 +309,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     print!("{}", report::summary_table(&all));
     println!();
     for r in &all {
-        if r.controller.starts_with("softgrip") {
+        if ControllerKind::name_is_softgrip(&r.controller) {
             let shares: Vec<String> = r
                 .step_cost_share
                 .iter()
@@ -344,7 +321,7 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
                 r.scene,
                 r.controller,
                 r.real_time_factor,
-                args.link,
+                args.link.name(),
                 r.ticks,
                 r.wall_s,
                 shares.join(", ")

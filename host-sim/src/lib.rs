@@ -8,6 +8,9 @@
 //!   (`host-sim experiment`; `host-sim calibrate` fits their files).
 //! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`).
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`).
+//! - [`exact`]: the exact f64 limit surface of a configuration's finger and the least force
+//!   that holds a load under it, without grids (`required-force`'s
+//!   exact force, the reference of `accuracy`).
 //! - [`brush`]: the brush finger, a physical fingertip plant of its own (elastic
 //!   foundation, stick–slip bristles, object dynamics) that the simulator can use as its
 //!   ground truth instead of softgrip's limit surface (`[finger] model = "brush"`).
@@ -29,6 +32,7 @@ pub mod bench;
 pub mod brush;
 pub mod cmd;
 pub mod config;
+pub mod exact;
 pub mod experiment;
 pub mod finger_file;
 pub mod input;

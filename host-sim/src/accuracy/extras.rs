@@ -7,8 +7,8 @@
 //! - [`representation_rows`]: how far the Eq. 10 ellipse and the chord polygon of an
 //!   [`FlsTable`] lie from the exact surface at fixed aspects (radially).
 
-use super::exact::ExactSurface;
 use super::knobs::{log_space, median, Budget};
+use crate::exact::ExactSurface;
 use softgrip::controller::DIRECTIONS;
 use softgrip::fls::AspectGrid;
 use softgrip::{FlsModel, FlsTable};

@@ -9,7 +9,8 @@
 //! emulated Cortex-M4F with `--target`), the Pareto front, the defaults, and the core
 //! against an independent brute-force 2-D integration at matched accuracy.
 //!
-//! - [`exact`]: the exact answers (and the exact-integration-per-tick rule).
+//! - [`crate::exact`]: the exact answers (and the exact-integration-per-tick rule), shared
+//!   with `required-force`.
 //! - [`knobs`]: the configurations and their measurement.
 //! - [`extras`]: the aspect grid's and the surface representations' own errors.
 //! - [`brute`]: the brute-force comparison.
@@ -17,7 +18,6 @@
 //! - [`report`]: the Markdown and the plot.
 
 pub mod brute;
-pub mod exact;
 pub mod extras;
 pub mod knobs;
 pub mod report;

@@ -1,10 +1,10 @@
 //! `host-sim required-force`: docs/model.md's slip-prevention rule for one load, computed by
 //! the controller's own start-up grid and solver.
 
-use crate::accuracy::exact::{ExactSurface, Finger, Rule};
 use crate::args::Precision;
 use crate::config::names::{flag, scene_key};
 use crate::config::ConfigArgs;
+use crate::exact::{ExactSurface, Finger, Rule};
 use crate::input::{config_reason, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};

@@ -1,5 +1,5 @@
-//! The exact answers the report measures against, and the "exact integration per tick"
-//! rule: docs/model.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
+//! The exact answers `required-force` reports and the `accuracy` report measures against,
+//! and the "exact integration per tick" rule: docs/model.md's slip-prevention rule evaluated in f64 with no grid at all, the limit
 //! surface integrated by [`FlsModel`] at every trial normal force.
 //!
 //! - [`Finger`]: the contact of a [`ControllerConfig`] (`a = c·N^γ`, `l/a(N)`).

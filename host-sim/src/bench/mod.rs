@@ -123,15 +123,15 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
         ControllerChoice::All => SWEEPS.to_vec(),
         ControllerChoice::One(kind) => vec![*SWEEPS
             .iter()
-            .find(|s| s.controller == kind.name())
+            .find(|s| s.controller == kind)
             .ok_or_else(|| {
-            let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
-            CliError::Usage(format!(
-                "--controller: bench has no sweep of \"{}\", expected all or one of {}",
-                kind.name(),
-                names.join(", ")
-            ))
-        })?],
+                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
+                CliError::Usage(format!(
+                    "--controller: bench has no sweep of \"{}\", expected all or one of {}",
+                    kind.name(),
+                    names.join(", ")
+                ))
+            })?],
     };
     Ok((families, sweeps))
 }

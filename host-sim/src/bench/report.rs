@@ -104,7 +104,7 @@ pub fn write_trials_csv(
                     "{i},{mu},{sensor},{},{},{},{v},{},{},{},{},{}",
                     r.holdable,
                     r.oracle_mean_n,
-                    sw.controller,
+                    sw.controller.name(),
                     run.dropped,
                     run.slip_events,
                     run.slip_distance_m,

@@ -48,3 +48,30 @@ pub struct PatchArgs {
     #[arg(long)]
     pub locus: Option<f64>,
 }
+
+/// `--link`: where softgrip's device loop runs, as `simulate` and `bench` take it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LinkName {
+    /// The firmware loop on a thread of its own, over a pseudo-terminal (also
+    /// `inprocess`).
+    #[value(alias = "inprocess")]
+    Pty,
+    /// The same loop and bytes through memory, on the calling thread.
+    Direct,
+    /// The Cortex-M4F firmware in QEMU, over its USART (`simulate` only).
+    Qemu,
+    /// The firmware on a board, over the serial port `--port` (`simulate` only).
+    Serial,
+}
+
+impl LinkName {
+    /// The name, as `--link` takes it and bench.json records it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Pty => "pty",
+            Self::Direct => "direct",
+            Self::Qemu => "qemu",
+            Self::Serial => "serial",
+        }
+    }
+}

@@ -10,6 +10,9 @@
 //! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`),
 //!   on plain options.
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`), on plain options.
+//! - [`exact`]: the exact f64 limit surface of a configuration's finger and the least force
+//!   that holds a load under it, without grids (`required-force`'s exact force, the
+//!   reference of `accuracy`).
 //! - [`brush`]: the brush finger, a physical fingertip plant of its own (elastic
 //!   foundation, stick–slip bristles, object dynamics) that the simulator can use as its
 //!   ground truth instead of softgrip's limit surface (`[finger] model = "brush"`).

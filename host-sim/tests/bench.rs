@@ -28,7 +28,12 @@ fn scene_text(name: &str) -> String {
 fn small_sweeps() -> Vec<sweep::Sweep> {
     SWEEPS
         .iter()
-        .filter(|s| matches!(s.controller, "softgrip" | "constant" | "fixed-torsion"))
+        .filter(|s| {
+            matches!(
+                s.controller.name(),
+                "softgrip" | "constant" | "fixed-torsion"
+            )
+        })
         .copied()
         .collect()
 }

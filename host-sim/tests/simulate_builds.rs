@@ -10,7 +10,7 @@
 use clap::Parser;
 use host_sim::cmd::simulate::{run_cmd, SimulateArgs};
 use host_sim::link::handed::precomputes;
-use host_sim::sim::controllers::{builds, ALL};
+use host_sim::sim::controllers::{builds, ControllerKind};
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -63,8 +63,9 @@ fn a_simulate_run_builds_each_controller_once_per_scene() {
     );
     let counts = builds();
     let _ = std::fs::remove_dir_all(&dir);
-    assert_eq!(counts.len(), ALL.len(), "{counts:?}");
-    for name in ALL {
+    assert_eq!(counts.len(), ControllerKind::ALL.len(), "{counts:?}");
+    for kind in ControllerKind::ALL {
+        let name = kind.name();
         assert_eq!(counts.get(name), Some(&2), "{name}: {counts:?}");
     }
 }

@@ -21,7 +21,6 @@
 //! `host-sim accuracy` (`cmd::accuracy`) parses its arguments into them.
 
 pub mod brute;
-
 pub mod extras;
 pub mod knobs;
 pub mod report;

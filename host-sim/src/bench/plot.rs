@@ -3,6 +3,7 @@
 //! SVG (plotters) and as PNG (that SVG rasterised by resvg with a system font).
 
 use super::sweep::Row;
+use crate::sim::controllers::ControllerKind;
 use crate::sim::report::RUN_COLOURS;
 use plotters::prelude::*;
 use std::path::Path;
@@ -136,12 +137,12 @@ fn draw_zoom<DB: DrawingBackend>(
     };
     let baseline_zero = all
         .iter()
-        .filter(|c| !c.0.starts_with("softgrip"))
+        .filter(|c| !ControllerKind::name_is_softgrip(c.0))
         .map(least_zero)
         .fold(f64::INFINITY, f64::min);
     let softgrip_default = all
         .iter()
-        .filter(|c| c.0.starts_with("softgrip"))
+        .filter(|c| ControllerKind::name_is_softgrip(c.0))
         .flat_map(|c| c.1.iter().filter(|p| p.2).map(|p| p.0))
         .fold(0.0_f64, f64::max);
     let x_max = (baseline_zero * 1.3).max(softgrip_default * 1.15);

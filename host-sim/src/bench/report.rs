@@ -1,6 +1,7 @@
 //! The benchmark's text tables and `bench.json`.
 
 use super::sweep::Row;
+use crate::sim::controllers::ControllerKind;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -103,7 +104,7 @@ pub fn write_trials_csv(
                     "{i},{mu},{sensor},{},{},{},{v},{},{},{},{},{}",
                     r.holdable,
                     r.oracle_mean_n,
-                    sw.controller,
+                    sw.controller.name(),
                     run.dropped,
                     run.slip_events,
                     run.slip_distance_m,
@@ -134,7 +135,7 @@ pub const DOMINANCE_MAX_DROP_RATE: f64 = 0.10;
 
 /// The dominance check of [`Dominance`] over one family's rows.
 pub fn dominance(family: &str, rows: &[Row]) -> Dominance {
-    let softgrip = |r: &&Row| r.controller.starts_with("softgrip");
+    let softgrip = |r: &&Row| ControllerKind::name_is_softgrip(&r.controller);
     let ours: Vec<&Row> = rows.iter().filter(softgrip).collect();
     let theirs: Vec<&Row> = rows
         .iter()

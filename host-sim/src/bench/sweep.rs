@@ -3,7 +3,7 @@
 
 use super::families::Trial;
 use super::oracle;
-use crate::sim::controllers::LinkKind;
+use crate::sim::controllers::{ControllerKind, LinkKind};
 use crate::sim::report;
 use crate::sim::run::{self, RunOptions};
 use crate::sim::scene::Scene;
@@ -15,8 +15,8 @@ use std::path::Path;
 /// A controller and the knob it is swept over.
 #[derive(Debug, Clone, Copy)]
 pub struct Sweep {
-    /// Controller name (as `simulate --controller` takes it).
-    pub controller: &'static str,
+    /// The controller (its name as `--controller` takes it and the outputs carry it).
+    pub controller: ControllerKind,
     /// The knob's name.
     pub knob: &'static str,
     /// Its values, in increasing order.
@@ -37,44 +37,44 @@ const BASELINE_SAFETY: &[f64] = &[1.0, 1.3, 1.6, 2.0, 3.0];
 /// Every controller with its knob, in the order of the tables.
 pub const SWEEPS: [Sweep; 7] = [
     Sweep {
-        controller: "softgrip",
+        controller: ControllerKind::Softgrip,
         knob: "safety",
         values: SOFTGRIP_SAFETY,
         default: DEFAULT_SAFETY,
     },
     Sweep {
-        controller: "softgrip-table",
+        controller: ControllerKind::SoftgripTable,
         knob: "safety",
         values: SOFTGRIP_SAFETY,
         default: DEFAULT_SAFETY,
     },
     Sweep {
-        controller: "constant",
+        controller: ControllerKind::Constant,
         knob: "force_n",
         values: &[2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0],
         default: 10.0,
     },
     Sweep {
-        controller: "coulomb",
+        controller: ControllerKind::Coulomb,
         knob: "safety",
         values: BASELINE_SAFETY,
         default: DEFAULT_SAFETY,
     },
     Sweep {
-        controller: "box",
+        controller: ControllerKind::Box,
         knob: "safety",
         values: BASELINE_SAFETY,
         default: DEFAULT_SAFETY,
     },
     Sweep {
-        controller: "fixed-torsion",
+        controller: ControllerKind::FixedTorsion,
         knob: "safety",
         values: BASELINE_SAFETY,
         default: DEFAULT_SAFETY,
     },
     // The slip servo has no model to scale: its knob is the force it relaxes to.
     Sweep {
-        controller: "slip-servo",
+        controller: ControllerKind::SlipServo,
         knob: "floor_n",
         values: &[0.2, 1.0, 2.0, 4.0],
         default: 0.2,
@@ -82,11 +82,11 @@ pub const SWEEPS: [Sweep; 7] = [
 ];
 
 /// `scene` with the controller's knob set to `value`.
-pub fn with_knob(scene: &Scene, controller: &str, value: f64) -> Scene {
+pub fn with_knob(scene: &Scene, controller: ControllerKind, value: f64) -> Scene {
     let mut s = scene.clone();
     match controller {
-        "constant" => s.controller.constant_force_n = Some(value),
-        "slip-servo" => s.controller.set("n_min_n", value),
+        ControllerKind::Constant => s.controller.constant_force_n = Some(value),
+        ControllerKind::SlipServo => s.controller.set("n_min_n", value),
         _ => s.controller.set("safety", value),
     }
     s
@@ -152,14 +152,15 @@ pub fn run_trial(
             peak_force_n: m.peak_normal_force_n,
         })
     };
-    let full = with_knob(scene, "constant", cfg.n_max_n);
-    let holdable = !one(&full, "constant", "holdable")?.dropped;
+    let constant = ControllerKind::Constant;
+    let full = with_knob(scene, constant, cfg.n_max_n);
+    let holdable = !one(&full, constant.name(), "holdable")?.dropped;
     let mut runs = Vec::new();
     for sw in sweeps {
         for &v in sw.values {
             runs.push(one(
                 &with_knob(scene, sw.controller, v),
-                sw.controller,
+                sw.controller.name(),
                 &format!("{}{v}", sw.knob),
             )?);
         }
@@ -248,7 +249,7 @@ pub fn rows(family: &str, sweeps: &[Sweep], results: &[TrialResult]) -> Vec<Row>
             let mean = |x: f64| if n > 0 { x / n as f64 } else { 0.0 };
             out.push(Row {
                 family: family.to_string(),
-                controller: sw.controller.to_string(),
+                controller: sw.controller.name().to_string(),
                 knob: sw.knob.to_string(),
                 knob_value: v,
                 default: v == sw.default,

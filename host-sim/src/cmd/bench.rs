@@ -1,10 +1,12 @@
 //! `host-sim bench`: its arguments, parsed into [`crate::bench::BenchOptions`] for
 //! [`crate::bench::run`].
 
+use crate::args::LinkName;
 use crate::bench::families::{self, BenchFinger};
 use crate::bench::sweep::{Sweep, SWEEPS};
 use crate::bench::{self, BenchError, BenchLink, BenchOptions};
 use crate::finger_file::FingerFile;
+use crate::sim::controllers::ControllerChoice;
 use crate::CliError;
 use clap::Args;
 use std::path::PathBuf;
@@ -22,17 +24,18 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 17)]
     pub seed: u64,
     /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
-    /// slip-servo) or all.
-    #[arg(long, default_value = "all")]
-    pub controller: String,
+    /// slip-servo) or all; softgrip-ellipse is softgrip in the default mode, which bench
+    /// runs as `softgrip`.
+    #[arg(long, value_enum, default_value = "all")]
+    pub controller: ControllerChoice,
     /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
-    /// softgrip's link: direct (in memory, on the calling thread) or pty (then a
-    /// sample of trials also runs over the pseudo-terminal and must give identical
-    /// results).
-    #[arg(long, default_value = "direct")]
-    pub link: String,
+    /// softgrip's link: direct (in memory, on the calling thread) or pty (alias
+    /// inprocess; then a sample of trials also runs over the pseudo-terminal and must
+    /// give identical results). qemu and serial are `simulate`'s only.
+    #[arg(long, value_enum, default_value = "direct")]
+    pub link: LinkName,
     /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
     #[arg(long)]
     pub trace: bool,
@@ -72,20 +75,19 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
                 ))
             })?]
     };
-    let sweeps: Vec<Sweep> = if args.controller == "all" {
-        SWEEPS.to_vec()
-    } else {
-        vec![*SWEEPS
+    let sweeps: Vec<Sweep> = match args.controller {
+        ControllerChoice::All => SWEEPS.to_vec(),
+        ControllerChoice::One(kind) => vec![*SWEEPS
             .iter()
-            .find(|s| s.controller == args.controller)
+            .find(|s| s.controller == kind)
             .ok_or_else(|| {
-                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller).collect();
+                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
                 CliError::Usage(format!(
-                    "--controller: unknown controller \"{}\", expected all or one of {}",
-                    args.controller,
+                    "--controller: bench has no sweep of \"{}\", expected all or one of {}",
+                    kind.name(),
                     names.join(", ")
                 ))
-            })?]
+            })?],
     };
     Ok((families, sweeps))
 }
@@ -97,12 +99,14 @@ pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
     if args.trials == 0 {
         return Err(CliError::Usage("--trials: must be at least 1".into()));
     }
-    let link = match args.link.as_str() {
-        "direct" => BenchLink::Direct,
-        "pty" => BenchLink::Pty,
-        other => {
+    let link = match args.link {
+        LinkName::Direct => BenchLink::Direct,
+        LinkName::Pty => BenchLink::Pty,
+        other @ (LinkName::Qemu | LinkName::Serial) => {
             return Err(CliError::Usage(format!(
-                "--link: \"{other}\" is not a link, expected direct or pty"
+                "--link {}: bench runs softgrip on the direct link, and over the pty as a \
+                 check; expected direct or pty (the firmware's links are simulate's)",
+                other.name()
             )))
         }
     };

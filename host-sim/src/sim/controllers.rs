@@ -20,6 +20,8 @@ use crate::link::serial::SerialLink;
 use crate::link::{Link, LinkError};
 use crate::sim::effects::LinkFate;
 use crate::sim::record::LinkSummary;
+use clap::builder::PossibleValue;
+use clap::ValueEnum;
 use softgrip::controller::{Checked, ControllerConfig, Libm, Mode};
 use softgrip::protocol::{Reply, Request, SensorFrame};
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
@@ -27,28 +29,142 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
-/// Every controller name `--controller` accepts (besides `all`).
-pub const NAMES: [&str; 8] = [
-    "softgrip",
-    "softgrip-ellipse",
-    "softgrip-table",
-    "constant",
-    "coulomb",
-    "box",
-    "fixed-torsion",
-    "slip-servo",
-];
+/// A controller a scene can run against: softgrip in one of its modes, or a baseline.
+/// Its [`name`](ControllerKind::name) is what `--controller` takes and what output file
+/// names, CSV columns and bench.json keys carry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, ValueEnum)]
+pub enum ControllerKind {
+    /// softgrip in the configuration's mode (the default mode: the inscribed ellipse).
+    Softgrip,
+    /// softgrip, mode `ellipse`.
+    SoftgripEllipse,
+    /// softgrip, mode `table`.
+    SoftgripTable,
+    /// A fixed grip force.
+    Constant,
+    /// `N = s·f_t/μ`: translation only, torsion ignored.
+    Coulomb,
+    /// `N = s·max(f_t/μ, m_n/m̂)`: a box-shaped limit.
+    Box,
+    /// The elliptic soft-contact cone of physics engines, with a patch of constant size.
+    FixedTorsion,
+    /// Starts light; raises the force after a detected slip, then relaxes slowly.
+    SlipServo,
+}
 
-/// The controllers `--controller all` runs (softgrip's default mode is `softgrip`).
-pub const ALL: [&str; 7] = [
-    "softgrip",
-    "softgrip-table",
-    "constant",
-    "coulomb",
-    "box",
-    "fixed-torsion",
-    "slip-servo",
-];
+impl ControllerKind {
+    /// Every controller `--controller` accepts (besides `all`).
+    pub const NAMES: [Self; 8] = [
+        Self::Softgrip,
+        Self::SoftgripEllipse,
+        Self::SoftgripTable,
+        Self::Constant,
+        Self::Coulomb,
+        Self::Box,
+        Self::FixedTorsion,
+        Self::SlipServo,
+    ];
+
+    /// The controllers `--controller all` runs (softgrip's default mode is `softgrip`).
+    pub const ALL: [Self; 7] = [
+        Self::Softgrip,
+        Self::SoftgripTable,
+        Self::Constant,
+        Self::Coulomb,
+        Self::Box,
+        Self::FixedTorsion,
+        Self::SlipServo,
+    ];
+
+    /// The name, as `--controller` takes it and the outputs carry it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Softgrip => "softgrip",
+            Self::SoftgripEllipse => "softgrip-ellipse",
+            Self::SoftgripTable => "softgrip-table",
+            Self::Constant => "constant",
+            Self::Coulomb => "coulomb",
+            Self::Box => "box",
+            Self::FixedTorsion => "fixed-torsion",
+            Self::SlipServo => "slip-servo",
+        }
+    }
+
+    /// The controller named `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::NAMES.into_iter().find(|k| k.name() == name)
+    }
+
+    /// Whether it is softgrip (it runs on the device, over the link), not a baseline (in
+    /// this process).
+    pub fn is_softgrip(self) -> bool {
+        matches!(
+            self,
+            Self::Softgrip | Self::SoftgripEllipse | Self::SoftgripTable
+        )
+    }
+
+    /// Whether the output's controller `name` is softgrip's (in any mode).
+    pub fn name_is_softgrip(name: &str) -> bool {
+        Self::from_name(name).is_some_and(Self::is_softgrip)
+    }
+}
+
+/// What `--controller` takes: one controller, or `all` ([`ControllerKind::ALL`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ControllerChoice {
+    /// Every controller of [`ControllerKind::ALL`].
+    All,
+    /// One controller.
+    One(ControllerKind),
+}
+
+impl ControllerChoice {
+    const VARIANTS: [Self; 9] = [
+        Self::All,
+        Self::One(ControllerKind::Softgrip),
+        Self::One(ControllerKind::SoftgripEllipse),
+        Self::One(ControllerKind::SoftgripTable),
+        Self::One(ControllerKind::Constant),
+        Self::One(ControllerKind::Coulomb),
+        Self::One(ControllerKind::Box),
+        Self::One(ControllerKind::FixedTorsion),
+        Self::One(ControllerKind::SlipServo),
+    ];
+
+    /// The controllers the choices select, in the order given, each once.
+    pub fn kinds(choices: &[Self]) -> Vec<ControllerKind> {
+        let mut v: Vec<ControllerKind> = Vec::new();
+        for c in choices {
+            let add: &[ControllerKind] = match c {
+                Self::All => &ControllerKind::ALL,
+                Self::One(k) => std::slice::from_ref(k),
+            };
+            for k in add {
+                if !v.contains(k) {
+                    v.push(*k);
+                }
+            }
+        }
+        v
+    }
+}
+
+impl ValueEnum for ControllerChoice {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::VARIANTS
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        match self {
+            Self::All => Some(PossibleValue::new("all").help(
+                "softgrip, softgrip-table and every baseline (not softgrip-ellipse, the same as \
+                 softgrip in the default mode)",
+            )),
+            Self::One(k) => k.to_possible_value(),
+        }
+    }
+}
 
 /// Where softgrip runs.
 #[derive(Debug, Clone)]
@@ -297,12 +413,12 @@ impl Baseline {
         cfg: &ControllerConfig,
         constant_n: f64,
     ) -> Result<Option<Self>, String> {
-        let kind = match name {
-            "constant" => Kind::Constant,
-            "coulomb" => Kind::Coulomb,
-            "box" => Kind::Box,
-            "fixed-torsion" => Kind::FixedTorsion,
-            "slip-servo" => Kind::SlipServo,
+        let kind = match ControllerKind::from_name(name) {
+            Some(ControllerKind::Constant) => Kind::Constant,
+            Some(ControllerKind::Coulomb) => Kind::Coulomb,
+            Some(ControllerKind::Box) => Kind::Box,
+            Some(ControllerKind::FixedTorsion) => Kind::FixedTorsion,
+            Some(ControllerKind::SlipServo) => Kind::SlipServo,
             _ => return Ok(None),
         };
         let bad = |why: String| {
@@ -457,17 +573,17 @@ pub fn build(
             .map(|c| Box::new(c) as Box<dyn GripController>)
             .map_err(|e| e.to_string())
     };
-    match name {
-        "softgrip" => softgrip(None),
-        "softgrip-ellipse" => softgrip(Some(Mode::Ellipse)),
-        "softgrip-table" => softgrip(Some(Mode::Table)),
-        other => Baseline::new(other, cfg, constant_n)?
+    match ControllerKind::from_name(name) {
+        Some(ControllerKind::Softgrip) => softgrip(None),
+        Some(ControllerKind::SoftgripEllipse) => softgrip(Some(Mode::Ellipse)),
+        Some(ControllerKind::SoftgripTable) => softgrip(Some(Mode::Table)),
+        _ => Baseline::new(name, cfg, constant_n)?
             .map(|b| Box::new(b) as Box<dyn GripController>)
             .ok_or_else(|| {
                 format!(
                     "--controller: unknown controller \"{}\", expected all or one of {}",
-                    crate::input::short(other),
-                    NAMES.join(", ")
+                    crate::input::short(name),
+                    ControllerKind::NAMES.map(ControllerKind::name).join(", ")
                 )
             }),
     }

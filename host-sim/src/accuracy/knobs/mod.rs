@@ -3,7 +3,7 @@
 //!
 //! Every configuration is measured the same way, on two fingers (the default
 //! [`ControllerConfig`], a rectangle whose contact grows with the force, and a Hertzian
-//! disc), against the exact f64 answers of [`super::exact`]:
+//! disc), against the exact f64 answers of [`crate::exact`]:
 //!
 //! - **pitch error**: the moment arm `a·pitch` the configuration stores at its grid forces
 //!   against `a·pitch` with the converged pitch, worst relative error over both fingers;

@@ -6,10 +6,11 @@ mod target;
 use target::target_report;
 pub use target::{check_firmware, elf_sections, Spread, TargetReport};
 
+use crate::args::LinkName;
 use crate::input::short;
 use crate::link::handed;
 use crate::link::qemu::default_paths;
-use crate::sim::controllers::{self, LinkKind};
+use crate::sim::controllers::{self, ControllerChoice, ControllerKind, LinkKind};
 use crate::sim::record::{RunSummary, Sample};
 use crate::sim::report;
 use crate::sim::run::{run_streaming, RunOptions, RunOutput};
@@ -32,16 +33,16 @@ pub struct SimulateArgs {
     /// The scenes folder for --all.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes"))]
     scenes: PathBuf,
-    /// The controller: softgrip (default mode), softgrip-ellipse, softgrip-table,
-    /// constant, coulomb, box, fixed-torsion, slip-servo, or all.
-    #[arg(long, default_value = "softgrip")]
-    controller: String,
-    /// The link to the device: `inprocess` (the firmware loop on a thread, over a
-    /// pseudo-terminal), `direct` (the same loop and bytes through memory, on this
+    /// The controllers, comma-separated: softgrip (default mode), softgrip-ellipse,
+    /// softgrip-table, constant, coulomb, box, fixed-torsion, slip-servo, or all.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "softgrip")]
+    controller: Vec<ControllerChoice>,
+    /// The link to the device: `pty` (alias `inprocess`: the firmware loop on a thread,
+    /// over a pseudo-terminal), `direct` (the same loop and bytes through memory, on this
     /// thread), `qemu` (the Cortex-M4F firmware in QEMU, over its USART) or `serial` (the
     /// firmware on a board, over the serial port --port).
-    #[arg(long, default_value = "inprocess")]
-    link: String,
+    #[arg(long, value_enum, default_value = "pty")]
+    link: LinkName,
     /// The serial port for `--link serial` (e.g. /dev/ttyUSB0, or a QEMU pty).
     #[arg(long)]
     port: Option<PathBuf>,
@@ -97,25 +98,8 @@ fn scenes(args: &SimulateArgs) -> Result<Vec<PathBuf>, CliError> {
     }
 }
 
-fn controllers(args: &SimulateArgs) -> Result<Vec<String>, CliError> {
-    if args.controller == "all" {
-        return Ok(controllers::ALL.iter().map(|s| s.to_string()).collect());
-    }
-    let names: Vec<String> = args
-        .controller
-        .split(',')
-        .map(|s| s.trim().to_string())
-        .collect();
-    for n in &names {
-        if !controllers::NAMES.contains(&n.as_str()) {
-            return Err(CliError::Usage(format!(
-                "--controller: unknown controller \"{}\", expected all or one of {}",
-                short(n),
-                controllers::NAMES.join(", ")
-            )));
-        }
-    }
-    Ok(names)
+fn controllers(args: &SimulateArgs) -> Vec<ControllerKind> {
+    ControllerChoice::kinds(&args.controller)
 }
 
 fn file_safe(s: &str) -> String {
@@ -179,7 +163,7 @@ fn write_scene_plots(
 pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
     let link = link_kind(args)?;
     let paths = scenes(args)?;
-    let names = controllers(args)?;
+    let names = controllers(args);
     check_link_use(args, &link, paths.len(), &names)?;
     let loaded = load_scenes(args, &paths, &names, &link)?;
     std::fs::create_dir_all(&args.out)
@@ -192,10 +176,10 @@ pub fn run_cmd(args: &SimulateArgs) -> Result<(), CliError> {
 
 /// The link `--link` names (with its port, firmware and QEMU paths).
 fn link_kind(args: &SimulateArgs) -> Result<LinkKind, CliError> {
-    Ok(match args.link.as_str() {
-        "inprocess" => LinkKind::InProcess,
-        "direct" => LinkKind::Direct,
-        "qemu" => {
+    Ok(match args.link {
+        LinkName::Pty => LinkKind::InProcess,
+        LinkName::Direct => LinkKind::Direct,
+        LinkName::Qemu => {
             // The ELF is checked in check_link_use, once the controllers need it.
             let (qemu_dir, firmware) = default_paths();
             LinkKind::Qemu {
@@ -203,13 +187,7 @@ fn link_kind(args: &SimulateArgs) -> Result<LinkKind, CliError> {
                 firmware: args.firmware.clone().unwrap_or(firmware),
             }
         }
-        "serial" => serial_link(args)?,
-        other => {
-            return Err(CliError::Usage(format!(
-                "--link: \"{}\" is not a link, expected inprocess, direct, qemu or serial",
-                short(other)
-            )))
-        }
+        LinkName::Serial => serial_link(args)?,
     })
 }
 
@@ -238,22 +216,21 @@ fn check_link_use(
     args: &SimulateArgs,
     link: &LinkKind,
     scenes: usize,
-    names: &[String],
+    names: &[ControllerKind],
 ) -> Result<(), CliError> {
     // Only softgrip runs on the device; the baselines always run in this process.
-    if args.link != "inprocess" && !names.iter().any(|n| n.starts_with("softgrip")) {
+    if args.link != LinkName::Pty && !names.iter().any(|k| k.is_softgrip()) {
+        let given = names.iter().map(|k| k.name()).collect::<Vec<_>>().join(",");
         return Err(CliError::Usage(format!(
-            "--link {}: --controller {} runs in this process, not over a link; \
-             add a softgrip controller (e.g. --controller softgrip,{}) or drop --link",
-            args.link,
-            short(&args.controller),
-            short(&args.controller)
+            "--link {}: --controller {given} runs in this process, not over a link; \
+             add a softgrip controller (e.g. --controller softgrip,{given}) or drop --link",
+            args.link.name(),
         )));
     }
     if let LinkKind::Qemu { firmware, .. } = link {
         check_firmware(firmware).map_err(CliError::Usage)?;
     }
-    let device_runs = scenes * names.iter().filter(|n| n.starts_with("softgrip")).count();
+    let device_runs = scenes * names.iter().filter(|k| k.is_softgrip()).count();
     if matches!(link, LinkKind::Serial { .. }) && device_runs > 1 {
         // A board keeps its controller between runs (a reconfiguration takes over the
         // running grasp), so a second run would not start from rest as the others do.
@@ -269,7 +246,7 @@ fn check_link_use(
 fn load_scenes(
     args: &SimulateArgs,
     paths: &[PathBuf],
-    names: &[String],
+    names: &[ControllerKind],
     link: &LinkKind,
 ) -> Result<Vec<(Scene, Checked)>, CliError> {
     let finger = match &args.finger {
@@ -299,13 +276,17 @@ fn load_scenes(
 /// its configuration (once), the precomputation of each softgrip mode that will run, and
 /// the baselines' patch. On an in-process link the precomputed controllers are the ones
 /// the runs use ([`handed`]); the firmware in QEMU or on a board precomputes its own.
-fn check_scene(scene: &Scene, names: &[String], link: &LinkKind) -> Result<Checked, String> {
+fn check_scene(
+    scene: &Scene,
+    names: &[ControllerKind],
+    link: &LinkKind,
+) -> Result<Checked, String> {
     scene.pipeline().map_err(|e| e.to_string())?;
     let cfg = crate::sim::run::controller_config(scene).map_err(|e| e.to_string())?;
     let in_process = matches!(link, LinkKind::InProcess | LinkKind::Direct);
     let mut modes: Vec<Mode> = names
         .iter()
-        .filter_map(|n| softgrip_mode(n, &cfg))
+        .filter_map(|&k| softgrip_mode(k, &cfg))
         .collect();
     modes.dedup();
     if !in_process {
@@ -330,19 +311,19 @@ fn check_scene(scene: &Scene, names: &[String], link: &LinkKind) -> Result<Check
         .controller
         .constant_force_n
         .unwrap_or(cfg.fault_force_n);
-    for c in names.iter().filter(|c| !c.starts_with("softgrip")) {
-        controllers::Baseline::new(c, &cfg, constant_n)?;
+    for c in names.iter().filter(|c| !c.is_softgrip()) {
+        controllers::Baseline::new(c.name(), &cfg, constant_n)?;
     }
     Ok(cfg)
 }
 
-/// The mode softgrip controller `name` runs in on a scene configured `cfg`; `None` for a
+/// The mode softgrip controller `kind` runs in on a scene configured `cfg`; `None` for a
 /// baseline.
-fn softgrip_mode(name: &str, cfg: &Checked) -> Option<Mode> {
-    match name {
-        "softgrip" => Some(cfg.mode),
-        "softgrip-ellipse" => Some(Mode::Ellipse),
-        "softgrip-table" => Some(Mode::Table),
+fn softgrip_mode(kind: ControllerKind, cfg: &Checked) -> Option<Mode> {
+    match kind {
+        ControllerKind::Softgrip => Some(cfg.mode),
+        ControllerKind::SoftgripEllipse => Some(Mode::Ellipse),
+        ControllerKind::SoftgripTable => Some(Mode::Table),
         _ => None,
     }
 }
@@ -352,7 +333,7 @@ fn softgrip_mode(name: &str, cfg: &Checked) -> Option<Mode> {
 fn run_all(
     args: &SimulateArgs,
     loaded: &[(Scene, Checked)],
-    names: &[String],
+    names: &[ControllerKind],
     link: &LinkKind,
 ) -> Result<Vec<RunSummary>, CliError> {
     let total: u64 = loaded
@@ -363,7 +344,7 @@ fn run_all(
     let mut all: Vec<RunSummary> = Vec::new();
     for (scene, cfg) in loaded {
         let mut runs = Vec::new();
-        for c in names {
+        for c in names.iter().map(|k| k.name()) {
             bar.set_message(format!("{} / {c}", scene.name));
             runs.push(run_one(&args.out, scene, cfg, c, link, &bar)?);
         }
@@ -427,7 +408,10 @@ fn write_summary(path: &Path, link: &LinkKind, all: &[RunSummary]) -> Result<(),
 fn print_report(args: &SimulateArgs, all: &[RunSummary], compare: bool) {
     print!("{}", report::summary_table(all));
     println!();
-    for r in all.iter().filter(|r| r.controller.starts_with("softgrip")) {
+    for r in all
+        .iter()
+        .filter(|r| ControllerKind::name_is_softgrip(&r.controller))
+    {
         let shares: Vec<String> = r
             .step_cost_share
             .iter()
@@ -439,7 +423,7 @@ fn print_report(args: &SimulateArgs, all: &[RunSummary], compare: bool) {
             r.scene,
             r.controller,
             r.real_time_factor,
-            args.link,
+            args.link.name(),
             r.ticks,
             r.wall_s,
             shares.join(", ")

@@ -3,9 +3,11 @@
 //! the check that `--firmware` is an ELF QEMU can boot.
 
 use crate::input::short;
+use crate::sim::controllers::ControllerKind;
 use crate::sim::record::RunSummary;
 use crate::CliError;
 use serde::Serialize;
+use softgrip::controller::Mode;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -66,10 +68,12 @@ impl TargetReport {
     }
 }
 
+/// The mode a softgrip run's costs are filed under (`softgrip` runs the default mode,
+/// the ellipse); `None` for a baseline.
 fn mode_of(controller: &str) -> Option<&'static str> {
-    match controller {
-        "softgrip" | "softgrip-ellipse" => Some("ellipse"),
-        "softgrip-table" => Some("table"),
+    match ControllerKind::from_name(controller)? {
+        ControllerKind::Softgrip | ControllerKind::SoftgripEllipse => Some(Mode::Ellipse.name()),
+        ControllerKind::SoftgripTable => Some(Mode::Table.name()),
         _ => None,
     }
 }
@@ -180,7 +184,7 @@ pub(super) fn target_report(
     Ok(TargetReport {
         firmware: firmware.display().to_string(),
         startup_instructions: startup
-            .get("ellipse")
+            .get(Mode::Ellipse.name())
             .or_else(|| startup.values().next())
             .copied()
             .unwrap_or(0.0),

@@ -113,10 +113,9 @@ pub(super) fn first_appearance<'a>(names: impl Iterator<Item = &'a str>) -> Vec<
     out
 }
 
-/// Whether a controller counts as softgrip (its name starts with `softgrip`) rather than a
-/// baseline.
+/// Whether a controller counts as softgrip (in any mode) rather than a baseline.
 pub(super) fn is_softgrip(controller: &str) -> bool {
-    controller.starts_with("softgrip")
+    crate::sim::controllers::ControllerKind::name_is_softgrip(controller)
 }
 
 /// Whether a run held its object: no slip event and not dropped (the verdict's rule,

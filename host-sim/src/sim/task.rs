@@ -2,7 +2,7 @@
 //! they overlap. These are the scene's own loads, not effects: every scene has them.
 
 use crate::sim::effects::World;
-use crate::sim::scene::Scene;
+use crate::sim::scene::{Phase, Scene};
 
 fn smoothstep(x: f64) -> f64 {
     let x = x.clamp(0.0, 1.0);
@@ -13,8 +13,11 @@ fn smoothstep(x: f64) -> f64 {
 /// (the object rests on its support), rising smoothly over the first 20 % of that lift,
 /// then 1. Without a lift phase the grasp carries it all along.
 pub fn support_fraction(scene: &Scene, t_s: f64) -> f64 {
-    match scene.task.iter().find(|p| p.kind == "lift") {
-        Some(p) => smoothstep((t_s - p.start_s) / (0.2 * (p.end_s - p.start_s))),
+    match scene.task.iter().find(|p| matches!(p, Phase::Lift { .. })) {
+        Some(p) => {
+            let (start_s, end_s) = p.span_s();
+            smoothstep((t_s - start_s) / (0.2 * (end_s - start_s)))
+        }
         None => 1.0,
     }
 }
@@ -24,26 +27,37 @@ pub fn support_fraction(scene: &Scene, t_s: f64) -> f64 {
 pub fn apply(scene: &Scene, w: &mut World) {
     let t = w.t_s;
     for p in &scene.task {
-        if !(t >= p.start_s && t < p.end_s) {
+        let (start_s, end_s) = p.span_s();
+        if !(t >= start_s && t < end_s) {
             continue;
         }
-        let span = p.end_s - p.start_s;
-        let x = (t - p.start_s) / span;
+        let x = (t - start_s) / (end_s - start_s);
         let two_pi = std::f64::consts::TAU;
-        match p.kind.as_str() {
+        match *p {
             // Accelerate, then decelerate to rest: a = A·sin(2πx).
-            "lift" => w.force_n[1] += w.mass_kg * p.accel_m_s2 * (two_pi * x).sin(),
-            "twist" => w.moment_nm += w.inertia_kg_m2 * p.angular_accel_rad_s2 * (two_pi * x).sin(),
-            "shake" => {
+            Phase::Lift { accel_m_s2, .. } => {
+                w.force_n[1] += w.mass_kg * accel_m_s2 * (two_pi * x).sin()
+            }
+            Phase::Twist {
+                angular_accel_rad_s2,
+                ..
+            } => w.moment_nm += w.inertia_kg_m2 * angular_accel_rad_s2 * (two_pi * x).sin(),
+            Phase::Shake {
+                amplitude_m_s2,
+                frequency_hz,
+                ..
+            } => {
                 w.force_n[1] +=
-                    w.mass_kg * p.amplitude_m_s2 * (two_pi * p.frequency_hz * (t - p.start_s)).sin()
+                    w.mass_kg * amplitude_m_s2 * (two_pi * frequency_hz * (t - start_s)).sin()
             }
-            "pull" => {
+            Phase::Pull {
+                force_n, moment_nm, ..
+            } => {
                 let ramp = smoothstep(x / 0.1);
-                w.force_n[0] += p.force_n * ramp;
-                w.moment_nm += p.moment_nm * ramp;
+                w.force_n[0] += force_n * ramp;
+                w.moment_nm += moment_nm * ramp;
             }
-            _ => {}
+            Phase::Hold { .. } => {}
         }
     }
 }

@@ -123,36 +123,112 @@ fn default_inertia() -> f64 {
     1e-4
 }
 
-/// One load phase, active on `[start_s, end_s)`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Phase {
-    /// `lift`, `hold`, `twist`, `shake` or `pull`.
-    pub kind: String,
-    /// Start [s].
-    pub start_s: f64,
-    /// End [s].
-    pub end_s: f64,
-    /// Lift: peak upward acceleration of a smooth (sin²) bump [m/s²].
-    #[serde(default)]
-    pub accel_m_s2: f64,
-    /// Twist: peak angular acceleration about the grasp axis of a smooth
-    /// accelerate–decelerate profile [rad/s²].
-    #[serde(default)]
-    pub angular_accel_rad_s2: f64,
-    /// Shake: acceleration amplitude [m/s²].
-    #[serde(default)]
-    pub amplitude_m_s2: f64,
-    /// Shake: frequency [Hz].
-    #[serde(default)]
-    pub frequency_hz: f64,
-    /// Pull: the external force, ramped in over the first 10 % of the phase [N], along the
-    /// cylinder axis.
-    #[serde(default)]
-    pub force_n: f64,
-    /// Pull: the external twisting moment, ramped likewise [N·m].
-    #[serde(default)]
-    pub moment_nm: f64,
+/// One load phase, active on `[start_s, end_s)`: a `[[task]]` table whose `kind` picks the
+/// variant, with that kind's keys only (an unknown kind, or another kind's key, is refused
+/// by name and line). A kind's own loads default to 0.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum Phase {
+    /// Lift: a smooth accelerate–decelerate bump upward, `a = A·sin(2πx)`.
+    Lift {
+        /// Start [s].
+        start_s: f64,
+        /// End [s].
+        end_s: f64,
+        /// Peak upward acceleration [m/s²].
+        #[serde(default)]
+        accel_m_s2: f64,
+    },
+    /// Hold: no load of its own.
+    Hold {
+        /// Start [s].
+        start_s: f64,
+        /// End [s].
+        end_s: f64,
+    },
+    /// Twist: a smooth accelerate–decelerate turn about the grasp axis.
+    Twist {
+        /// Start [s].
+        start_s: f64,
+        /// End [s].
+        end_s: f64,
+        /// Peak angular acceleration [rad/s²].
+        #[serde(default)]
+        angular_accel_rad_s2: f64,
+    },
+    /// Shake: a vertical sinusoidal acceleration.
+    Shake {
+        /// Start [s].
+        start_s: f64,
+        /// End [s].
+        end_s: f64,
+        /// Acceleration amplitude [m/s²].
+        #[serde(default)]
+        amplitude_m_s2: f64,
+        /// Frequency [Hz].
+        #[serde(default)]
+        frequency_hz: f64,
+    },
+    /// Pull: an external force along the cylinder axis and a twisting moment, ramped in
+    /// over the first 10 % of the phase.
+    Pull {
+        /// Start [s].
+        start_s: f64,
+        /// End [s].
+        end_s: f64,
+        /// The force [N].
+        #[serde(default)]
+        force_n: f64,
+        /// The moment [N·m].
+        #[serde(default)]
+        moment_nm: f64,
+    },
+}
+
+impl Phase {
+    /// The kind's name, as the scene spells it.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Phase::Lift { .. } => "lift",
+            Phase::Hold { .. } => "hold",
+            Phase::Twist { .. } => "twist",
+            Phase::Shake { .. } => "shake",
+            Phase::Pull { .. } => "pull",
+        }
+    }
+
+    /// `[start_s, end_s)` [s].
+    pub fn span_s(&self) -> (f64, f64) {
+        match *self {
+            Phase::Lift { start_s, end_s, .. }
+            | Phase::Hold { start_s, end_s }
+            | Phase::Twist { start_s, end_s, .. }
+            | Phase::Shake { start_s, end_s, .. }
+            | Phase::Pull { start_s, end_s, .. } => (start_s, end_s),
+        }
+    }
+
+    /// Every number of the phase (for the finiteness check).
+    fn values(&self) -> Vec<f64> {
+        let (start_s, end_s) = self.span_s();
+        let own = match *self {
+            Phase::Lift { accel_m_s2, .. } => vec![accel_m_s2],
+            Phase::Hold { .. } => vec![],
+            Phase::Twist {
+                angular_accel_rad_s2,
+                ..
+            } => vec![angular_accel_rad_s2],
+            Phase::Shake {
+                amplitude_m_s2,
+                frequency_hz,
+                ..
+            } => vec![amplitude_m_s2, frequency_hz],
+            Phase::Pull {
+                force_n, moment_nm, ..
+            } => vec![force_n, moment_nm],
+        };
+        [start_s, end_s].into_iter().chain(own).collect()
+    }
 }
 
 /// The scene's `[controller]` table: softgrip's configuration fields, overlaid on the
@@ -403,55 +479,69 @@ impl Scene {
     }
 
     fn check(&self, text: &str) -> Result<(), SceneError> {
-        let bad = |table: &str, key: &str, why: String| {
-            let at = line_of(text, table, key).map_or(String::new(), |l| format!("line {l}: "));
-            let full = if table.is_empty() {
-                key.to_string()
-            } else {
-                format!("{table}.{key}")
-            };
-            SceneError(format!("{at}{full}: {why}"))
-        };
-        let positive = |table: &str, key: &str, v: f64| {
-            if v > 0.0 && v.is_finite() {
-                Ok(())
-            } else {
-                Err(bad(
-                    table,
-                    key,
-                    format!("{} must be a finite number > 0", short_num(v)),
-                ))
+        self.check_length(text)?;
+        self.check_effect_names(text)?;
+        positive(text, "finger", "mu", self.finger.mu)?;
+        self.check_controller_keys(text)?;
+        self.check_model(text)?;
+        self.check_finger(text)?;
+        positive(text, "object", "mass_kg", self.object.mass_kg)?;
+        positive(text, "object", "inertia_kg_m2", self.object.inertia_kg_m2)?;
+        if !self.object.com_offset_m.is_finite() {
+            return Err(bad(text, "object", "com_offset_m", "must be finite".into()));
+        }
+        for p in &self.task {
+            let (start_s, end_s) = p.span_s();
+            if p.values().iter().any(|v| !v.is_finite()) || end_s <= start_s {
+                return Err(bad(
+                    text,
+                    "task",
+                    "end_s",
+                    format!(
+                        "phase \"{}\" needs finite values and end_s > start_s",
+                        p.kind()
+                    ),
+                ));
             }
-        };
-        positive("", "duration_s", self.duration_s)?;
-        positive("", "tick_hz", self.tick_hz)?;
+        }
+        Ok(())
+    }
+
+    /// `duration_s` and `tick_hz`: between one tick and [`MAX_TICKS`].
+    fn check_length(&self, text: &str) -> Result<(), SceneError> {
+        positive(text, "", "duration_s", self.duration_s)?;
+        positive(text, "", "tick_hz", self.tick_hz)?;
         let ticks = (self.duration_s * self.tick_hz).round();
+        let at = format!(
+            "{} s at tick_hz {}",
+            short_num(self.duration_s),
+            short_num(self.tick_hz)
+        );
         if ticks > MAX_TICKS {
             return Err(bad(
+                text,
                 "",
                 "duration_s",
-                format!(
-                    "{} s at tick_hz {} is more than 1e8 ticks",
-                    short_num(self.duration_s),
-                    short_num(self.tick_hz)
-                ),
+                format!("{at} is more than 1e8 ticks"),
             ));
         }
         if ticks < 1.0 {
             return Err(bad(
+                text,
                 "",
                 "duration_s",
-                format!(
-                    "{} s at tick_hz {} is 0 ticks; a scene needs at least one \
-                     (duration_s >= 0.5/tick_hz)",
-                    short_num(self.duration_s),
-                    short_num(self.tick_hz)
-                ),
+                format!("{at} is 0 ticks; a scene needs at least one (duration_s >= 0.5/tick_hz)"),
             ));
         }
+        Ok(())
+    }
+
+    /// Every effect listed in `effects` and every `[effect.NAME]` table names an effect.
+    fn check_effect_names(&self, text: &str) -> Result<(), SceneError> {
         for name in &self.effects {
             if !EFFECT_NAMES.contains(&name.as_str()) {
                 return Err(bad(
+                    text,
                     "",
                     "effects",
                     format!(
@@ -465,78 +555,54 @@ impl Scene {
         for name in self.effect.keys() {
             if !EFFECT_NAMES.contains(&name.as_str()) {
                 return Err(bad(
+                    text,
                     &format!("effect.{}", short(name)),
                     "",
                     format!("unknown effect \"{}\"", short(name)),
                 ));
             }
         }
-        positive("finger", "mu", self.finger.mu)?;
-        self.check_controller_keys(text)?;
-        self.check_model(text)?;
-        positive("finger", "half_length_m", self.finger.half_length_m)?;
-        positive("finger", "young_modulus_pa", self.finger.young_modulus_pa)?;
-        if self.finger.k.is_nan() || self.finger.k < 1.0 {
-            return Err(bad(
-                "finger",
-                "k",
-                format!("{} must be >= 1", short_num(self.finger.k)),
-            ));
+        Ok(())
+    }
+
+    /// The finger's length, stiffness, pressure exponent, contact law and Poisson ratio.
+    fn check_finger(&self, text: &str) -> Result<(), SceneError> {
+        let f = &self.finger;
+        positive(text, "finger", "half_length_m", f.half_length_m)?;
+        positive(text, "finger", "young_modulus_pa", f.young_modulus_pa)?;
+        if f.k.is_nan() || f.k < 1.0 {
+            let why = format!("{} must be >= 1", short_num(f.k));
+            return Err(bad(text, "finger", "k", why));
         }
-        if !(0.0..=0.5).contains(&self.finger.gamma) && !self.brush_fits_law() {
-            return Err(bad(
-                "finger",
-                "gamma",
-                format!("{} must lie in [0, 1/2]", short_num(self.finger.gamma)),
-            ));
+        if !(0.0..=0.5).contains(&f.gamma) && !self.brush_fits_law() {
+            let why = format!("{} must lie in [0, 1/2]", short_num(f.gamma));
+            return Err(bad(text, "finger", "gamma", why));
         }
-        if !(0.0..0.5).contains(&self.finger.poisson) {
-            return Err(bad(
-                "finger",
-                "poisson",
-                format!("{} must lie in [0, 1/2)", short_num(self.finger.poisson)),
-            ));
-        }
-        positive("object", "mass_kg", self.object.mass_kg)?;
-        positive("object", "inertia_kg_m2", self.object.inertia_kg_m2)?;
-        if !self.object.com_offset_m.is_finite() {
-            return Err(bad("object", "com_offset_m", "must be finite".into()));
-        }
-        for p in &self.task {
-            if !matches!(
-                p.kind.as_str(),
-                "lift" | "hold" | "twist" | "shake" | "pull"
-            ) {
-                return Err(bad(
-                    "task",
-                    "kind",
-                    format!(
-                        "\"{}\" is not lift, hold, twist, shake or pull",
-                        short(&p.kind)
-                    ),
-                ));
-            }
-            let values = [
-                p.start_s,
-                p.end_s,
-                p.accel_m_s2,
-                p.angular_accel_rad_s2,
-                p.amplitude_m_s2,
-                p.frequency_hz,
-                p.force_n,
-                p.moment_nm,
-            ];
-            if values.iter().any(|v| !v.is_finite()) || p.end_s <= p.start_s {
-                return Err(bad(
-                    "task",
-                    "end_s",
-                    format!(
-                        "phase \"{}\" needs finite values and end_s > start_s",
-                        short(&p.kind)
-                    ),
-                ));
-            }
+        if !(0.0..0.5).contains(&f.poisson) {
+            let why = format!("{} must lie in [0, 1/2)", short_num(f.poisson));
+            return Err(bad(text, "finger", "poisson", why));
         }
         Ok(())
+    }
+}
+
+/// A bad setting `table.key` (or a top-level `key`), with its line in `text` if found.
+fn bad(text: &str, table: &str, key: &str, why: String) -> SceneError {
+    let at = line_of(text, table, key).map_or(String::new(), |l| format!("line {l}: "));
+    let full = if table.is_empty() {
+        key.to_string()
+    } else {
+        format!("{table}.{key}")
+    };
+    SceneError(format!("{at}{full}: {why}"))
+}
+
+/// `table.key = v` must be a finite number > 0.
+fn positive(text: &str, table: &str, key: &str, v: f64) -> Result<(), SceneError> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        let why = format!("{} must be a finite number > 0", short_num(v));
+        Err(bad(text, table, key, why))
     }
 }

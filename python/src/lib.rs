@@ -88,15 +88,13 @@ fn shape_of(py: Python<'_>, s: &str) -> PyResult<FingerShape> {
 }
 
 fn mode_of(py: Python<'_>, s: &str) -> PyResult<Mode> {
-    match s {
-        "ellipse" => Ok(Mode::Ellipse),
-        "table" => Ok(Mode::Table),
-        other => Err(bad(
+    Mode::from_name(s).ok_or_else(|| {
+        bad(
             py,
             "mode",
-            format!("mode: {other:?} is not a mode, expected \"ellipse\" or \"table\""),
-        )),
-    }
+            format!("mode: {s:?} is not a mode, expected \"ellipse\" or \"table\""),
+        )
+    })
 }
 
 /// The defaults of `ControllerConfig`, as a dict.

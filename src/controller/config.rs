@@ -124,6 +124,14 @@ pub enum Mode {
 }
 
 impl Mode {
+    /// Every mode, in declaration order.
+    pub const ALL: [Mode; 2] = [Mode::Ellipse, Mode::Table];
+
+    /// The mode called `name` ([`Mode::name`]), if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
     /// The name the command line uses.
     pub fn name(self) -> &'static str {
         match self {

@@ -25,7 +25,7 @@ use softgrip::protocol::{Pacing, Reply, Request, SensorFrame, Stats};
 use std::io::{BufRead, BufReader, Write};
 use std::os::unix::net::UnixStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Stdio};
+use std::process::Child;
 use std::time::{Duration, Instant};
 
 /// TIM3's registers on the STM32F405 (RM0090).
@@ -138,36 +138,8 @@ fn boot(qemu: &Path, elf: &Path) -> (Emulator, SerialLink, Qmp) {
     let mut cmd = host_sim::link::qemu::command(qemu, elf, "pty", true);
     cmd.arg("-qmp")
         .arg(format!("unix:{},server=on,wait=off", socket.display()));
-    let mut child = cmd
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // QEMU names the pty on stdout or stderr.
-    let (tx, rx) = std::sync::mpsc::channel();
-    let streams: [Option<Box<dyn std::io::Read + Send>>; 2] = [
-        child.stdout.take().map(|s| Box::new(s) as _),
-        child.stderr.take().map(|s| Box::new(s) as _),
-    ];
-    for stream in streams.into_iter().flatten() {
-        let tx = tx.clone();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stream).lines().map_while(Result::ok) {
-                if let Some(i) = line.find("/dev/pts/") {
-                    let path: String = line[i..]
-                        .chars()
-                        .take_while(|c| !c.is_whitespace() && *c != ')')
-                        .collect();
-                    let _ = tx.send(path);
-                }
-            }
-        });
-    }
+    let (child, pty) = host_sim::link::qemu::spawn_on_pty(cmd).unwrap();
     let emulator = Emulator(child);
-    let pty = rx
-        .recv_timeout(Duration::from_secs(10))
-        .expect("QEMU did not name its pseudo-terminal");
     let qmp = Qmp::connect(&socket);
     let link = SerialLink::open(Path::new(&pty), DEFAULT_BAUD, Pacing::Lockstep).unwrap();
     let _ = std::fs::remove_file(&socket);

@@ -95,7 +95,14 @@ pub fn start(qemu_dir: &Path, elf: &Path) -> Result<(Child, String), LinkError> 
             elf.display()
         )));
     }
-    let mut child = command(qemu_dir, elf, "pty", true)
+    spawn_on_pty(command(qemu_dir, elf, "pty", true))
+}
+
+/// Spawns a QEMU `cmd` whose serial port is `pty` (e.g. [`command`]'s, with arguments of
+/// the caller's added) and returns the process and the pseudo-terminal QEMU names, or an
+/// error (the process killed) if it names none within 10 s.
+pub fn spawn_on_pty(mut cmd: Command) -> Result<(Child, String), LinkError> {
+    let mut child = cmd
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

@@ -93,8 +93,8 @@ pub fn mean_oracle_force_n(
         w.t_s = k as f64 * dt;
         w.force_n = [0.0, 0.0];
         w.moment_nm = 0.0;
-        w.support_fraction = task::support_fraction(scene, w.t_s);
-        task::apply(scene, &mut w);
+        w.support_fraction = task::support_fraction(&scene.task, w.t_s);
+        task::apply(&scene.task, &mut w);
         pipeline.load(&mut w);
         let [fx, fy] = w.contact_force_n();
         let n = least_holding_force_n(

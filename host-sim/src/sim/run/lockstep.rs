@@ -108,8 +108,8 @@ impl<'s, 't> Lockstep<'s, 't> {
         w.t_s = k as f64 * w.dt_s;
         w.force_n = [0.0, 0.0];
         w.moment_nm = 0.0;
-        w.support_fraction = task::support_fraction(self.scene, w.t_s);
-        task::apply(self.scene, w);
+        w.support_fraction = task::support_fraction(&self.scene.task, w.t_s);
+        task::apply(&self.scene.task, w);
         self.costs.core += Costs::since(t);
         self.pipeline.load(w);
         let ([fx, fy], moment) = self.plant.contact_load(w);

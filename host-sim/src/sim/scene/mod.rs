@@ -50,6 +50,7 @@
 use crate::input::{short, short_num, SCENE_CAP_BYTES};
 use crate::sim::effects::{self, EffectSettings, NAMES as EFFECT_NAMES};
 pub use crate::sim::finger::{Finger, FingerModel};
+pub use crate::sim::task::Phase;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -121,114 +122,6 @@ pub struct Object {
 
 fn default_inertia() -> f64 {
     1e-4
-}
-
-/// One load phase, active on `[start_s, end_s)`: a `[[task]]` table whose `kind` picks the
-/// variant, with that kind's keys only (an unknown kind, or another kind's key, is refused
-/// by name and line). A kind's own loads default to 0.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
-pub enum Phase {
-    /// Lift: a smooth accelerate–decelerate bump upward, `a = A·sin(2πx)`.
-    Lift {
-        /// Start [s].
-        start_s: f64,
-        /// End [s].
-        end_s: f64,
-        /// Peak upward acceleration [m/s²].
-        #[serde(default)]
-        accel_m_s2: f64,
-    },
-    /// Hold: no load of its own.
-    Hold {
-        /// Start [s].
-        start_s: f64,
-        /// End [s].
-        end_s: f64,
-    },
-    /// Twist: a smooth accelerate–decelerate turn about the grasp axis.
-    Twist {
-        /// Start [s].
-        start_s: f64,
-        /// End [s].
-        end_s: f64,
-        /// Peak angular acceleration [rad/s²].
-        #[serde(default)]
-        angular_accel_rad_s2: f64,
-    },
-    /// Shake: a vertical sinusoidal acceleration.
-    Shake {
-        /// Start [s].
-        start_s: f64,
-        /// End [s].
-        end_s: f64,
-        /// Acceleration amplitude [m/s²].
-        #[serde(default)]
-        amplitude_m_s2: f64,
-        /// Frequency [Hz].
-        #[serde(default)]
-        frequency_hz: f64,
-    },
-    /// Pull: an external force along the cylinder axis and a twisting moment, ramped in
-    /// over the first 10 % of the phase.
-    Pull {
-        /// Start [s].
-        start_s: f64,
-        /// End [s].
-        end_s: f64,
-        /// The force [N].
-        #[serde(default)]
-        force_n: f64,
-        /// The moment [N·m].
-        #[serde(default)]
-        moment_nm: f64,
-    },
-}
-
-impl Phase {
-    /// The kind's name, as the scene spells it.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Phase::Lift { .. } => "lift",
-            Phase::Hold { .. } => "hold",
-            Phase::Twist { .. } => "twist",
-            Phase::Shake { .. } => "shake",
-            Phase::Pull { .. } => "pull",
-        }
-    }
-
-    /// `[start_s, end_s)` [s].
-    pub fn span_s(&self) -> (f64, f64) {
-        match *self {
-            Phase::Lift { start_s, end_s, .. }
-            | Phase::Hold { start_s, end_s }
-            | Phase::Twist { start_s, end_s, .. }
-            | Phase::Shake { start_s, end_s, .. }
-            | Phase::Pull { start_s, end_s, .. } => (start_s, end_s),
-        }
-    }
-
-    /// Every number of the phase (for the finiteness check).
-    fn values(&self) -> Vec<f64> {
-        let (start_s, end_s) = self.span_s();
-        let own = match *self {
-            Phase::Lift { accel_m_s2, .. } => vec![accel_m_s2],
-            Phase::Hold { .. } => vec![],
-            Phase::Twist {
-                angular_accel_rad_s2,
-                ..
-            } => vec![angular_accel_rad_s2],
-            Phase::Shake {
-                amplitude_m_s2,
-                frequency_hz,
-                ..
-            } => vec![amplitude_m_s2, frequency_hz],
-            Phase::Pull {
-                force_n, moment_nm, ..
-            } => vec![force_n, moment_nm],
-        };
-        [start_s, end_s].into_iter().chain(own).collect()
-    }
 }
 
 /// The scene's `[controller]` table: softgrip's configuration fields, overlaid on the

@@ -108,6 +108,17 @@ impl ControllerKind {
     pub fn name_is_softgrip(name: &str) -> bool {
         Self::from_name(name).is_some_and(Self::is_softgrip)
     }
+
+    /// The mode softgrip runs in on a configuration whose own mode is `configured`
+    /// (`softgrip` keeps it, the other two name theirs); `None` for a baseline.
+    pub fn softgrip_mode(self, configured: Mode) -> Option<Mode> {
+        match self {
+            Self::Softgrip => Some(configured),
+            Self::SoftgripEllipse => Some(Mode::Ellipse),
+            Self::SoftgripTable => Some(Mode::Table),
+            _ => None,
+        }
+    }
 }
 
 /// What `--controller` takes: one controller, or `all` ([`ControllerKind::ALL`]).
@@ -567,17 +578,11 @@ pub fn build(
     if let Ok(mut builds) = BUILDS.lock() {
         *builds.entry(name.to_string()).or_default() += 1;
     }
-    let softgrip = |mode: Option<Mode>| -> Result<Box<dyn GripController>, String> {
-        let cfg = cfg.with_mode(mode.unwrap_or(cfg.mode));
-        SoftgripLink::start(name, *cfg.config(), link)
+    match ControllerKind::from_name(name).and_then(|k| k.softgrip_mode(cfg.mode)) {
+        Some(mode) => SoftgripLink::start(name, *cfg.with_mode(mode).config(), link)
             .map(|c| Box::new(c) as Box<dyn GripController>)
-            .map_err(|e| e.to_string())
-    };
-    match ControllerKind::from_name(name) {
-        Some(ControllerKind::Softgrip) => softgrip(None),
-        Some(ControllerKind::SoftgripEllipse) => softgrip(Some(Mode::Ellipse)),
-        Some(ControllerKind::SoftgripTable) => softgrip(Some(Mode::Table)),
-        _ => Baseline::new(name, cfg, constant_n)?
+            .map_err(|e| e.to_string()),
+        None => Baseline::new(name, cfg, constant_n)?
             .map(|b| Box::new(b) as Box<dyn GripController>)
             .ok_or_else(|| {
                 format!(

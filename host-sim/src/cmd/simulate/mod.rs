@@ -286,9 +286,10 @@ fn check_scene(
     let in_process = matches!(link, LinkKind::InProcess | LinkKind::Direct);
     let mut modes: Vec<Mode> = names
         .iter()
-        .filter_map(|&k| softgrip_mode(k, &cfg))
+        .filter_map(|k| k.softgrip_mode(cfg.mode))
         .collect();
-    modes.dedup();
+    // On an in-process link a mode two controllers share is precomputed once (the store
+    // keeps it by configuration).
     if !in_process {
         // The device would only say that its configuration failed: check one mode here.
         modes.truncate(1);
@@ -315,17 +316,6 @@ fn check_scene(
         controllers::Baseline::new(c.name(), &cfg, constant_n)?;
     }
     Ok(cfg)
-}
-
-/// The mode softgrip controller `kind` runs in on a scene configured `cfg`; `None` for a
-/// baseline.
-fn softgrip_mode(kind: ControllerKind, cfg: &Checked) -> Option<Mode> {
-    match kind {
-        ControllerKind::Softgrip => Some(cfg.mode),
-        ControllerKind::SoftgripEllipse => Some(Mode::Ellipse),
-        ControllerKind::SoftgripTable => Some(Mode::Table),
-        _ => None,
-    }
 }
 
 /// Runs every scene against every controller, streaming each run to its CSV and drawing

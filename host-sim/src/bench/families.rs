@@ -2,68 +2,61 @@
 //! ranges. Every trial is drawn from the bench seed, the family and the trial's index
 //! (a ChaCha stream of its own), so the same seed gives the same trials.
 //!
-//! All families share one fingertip ([`BenchFinger`]): by default that of the shipped
-//! scenes (a hemicylinder, `k = 2`, `μ = 0.8`, `a = 2.5e-3·N^0.5` m, half-length 10 mm),
-//! or a finger file's (`bench --finger`, e.g. `calibrate --out`'s). They share softgrip's
-//! default limits (`N_min = 0.2` N, `N_max = 20` N), at 1 kHz, and last 1.2 to 1.5 s. The
-//! finger's `μ` is the one every controller believes; the `mu-mismatch` family scales
-//! the true one.
+//! Each trial draws its own fingertip ([`super::trial_finger`]: by default a brush
+//! finger, a physical plant softgrip does not model), measures it in the lab and
+//! calibrates every controller from those same rows ([`super::lab`]); no controller
+//! reads the plant. All trials share softgrip's default limits (`N_min = 0.2` N,
+//! `N_max = 20` N), at 1 kHz, and last 1.2 to 1.5 s.
 //!
 //! | family | load | ranges (uniform) | effects |
 //! | --- | --- | --- | --- |
 //! | `lift-hold` | lift (0.1–0.6 s) then hold | mass 0.05–0.5 kg, COM offset 0–20 mm, peak lift acceleration 1–5 m/s² | gravity, sensor noise |
-//! | `shake` | lift at 2 m/s², then shake (0.5–1.5 s) | mass 0.05–0.3 kg, COM offset 0–10 mm, 2–8 Hz, 2–10 m/s², actuator time constant 5–30 ms, slew 100–500 N/s (softgrip is told both) | gravity, sensor noise, actuator |
-//! | `twist` | twist about the grasp axis (0.2–1.2 s) | peak moment 5–100 % of the grasp's torsion capacity at `N_max` (two contacts), mass 0.02–0.15 kg, COM offset 0–5 mm | gravity, sensor noise |
-//! | `mu-mismatch` | as `lift-hold` | true μ = believed μ (0.8) × U(0.7, 1.3), mass 0.05–0.4 kg, COM 0–15 mm, lift 1–4 m/s²; every other trial lists the slip sensor | gravity, sensor noise, (slip sensor) |
+//! | `shake` | lift at 2 m/s², then shake (0.5–1.5 s) | mass 0.05–0.3 kg, COM offset 0–10 mm, 2–8 Hz, 2–10 m/s², actuator time constant 5–30 ms, slew 100–500 N/s (not told to the controllers unless `tell_actuator`) | gravity, sensor noise, actuator |
+//! | `twist` | twist about the grasp axis (0.2–1.2 s) | peak moment 5–100 % of the grasp's torsion capacity at `N_max` (two contacts, the plant's own onset), mass 0.02–0.15 kg, COM offset 0–5 mm | gravity, sensor noise |
+//! | `mu-mismatch` | as `lift-hold` | the finger's μ (static and kinetic) × U(0.7, 1.3) after the lab measured it, mass 0.05–0.4 kg, COM 0–15 mm, lift 1–4 m/s²; every other trial lists the slip sensor, drawn per trial (below) | gravity, sensor noise, (slip sensor) |
 //! | `faults` | as `lift-hold` | mass 0.05–0.4 kg, COM 0–15 mm, lift 1–4 m/s²; noise 0.01–0.05 N; dropouts 0–2 %, NaN 0–1 %; link delay 0–3 ticks, bit flips 0–2 %, truncation 0–1 %, drops 0–2 % | gravity, sensor noise and faults, link latency and faults |
+//!
+//! The slip sensor of a `mu-mismatch` trial: it reports incipient slip once the share of
+//! the patch that slides (on the brush finger; the load's utilisation on the limit
+//! surface) passes a threshold drawn from U(0.2, 0.9), so that low thresholds fire
+//! persistently on creep with no gross slip coming; latency U(2, 20) ms; it misses an
+//! episode with probability U(0, 0.1) and raises false alarms at U(0, 1) Hz.
+//!
+//! `--hard` ([`Ranges::hard`]) moves three families to the ranges where the audit found
+//! softgrip weakest: shakes of 6–15 Hz through 20–60 ms actuators, twists of 80–100 % of
+//! the capacity, and a true μ of 0.5–1.0 × the measured one.
 
+use super::lab::{self, Beliefs};
+use super::onset_table::OnsetTable;
+use super::oracle::TrueLimit;
+use super::trial_finger::{FingerSource, TrialFinger};
+use crate::sim::run as sim_run;
 use crate::sim::scene::Scene;
+use crate::sim::truth::Truth;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use softgrip::controller::FingerShape;
+use std::sync::Arc;
 
 /// The families `--family all` runs, in order.
 pub const NAMES: [&str; 5] = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
 
-/// The friction coefficient softgrip and the baselines believe by default [-].
-pub const BELIEVED_MU: f64 = 0.8;
-
-/// The fingertip of every trial: the truth's (`mu-mismatch` aside, whose true μ is this
-/// μ scaled) and what every controller believes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BenchFinger {
-    /// Hemicylinder (`rect`) or hemisphere (`disc`).
-    pub shape: FingerShape,
-    /// Pressure exponent `k ≥ 1`.
-    pub k: f64,
-    /// Friction coefficient [-].
-    pub mu: f64,
-    /// `c` in `a = c·N^γ` [m/N^γ].
-    pub c: f64,
-    /// `γ` in `a = c·N^γ`.
-    pub gamma: f64,
-    /// Half-length `l` of the rectangular patch [m].
-    pub half_length_m: f64,
-}
-
-impl Default for BenchFinger {
-    /// The shipped scenes' finger.
-    fn default() -> Self {
-        Self {
-            shape: FingerShape::Rect,
-            k: 2.0,
-            mu: BELIEVED_MU,
-            c: 2.5e-3,
-            gamma: 0.5,
-            half_length_m: 0.01,
-        }
-    }
-}
+/// The least command of every trial [N] (softgrip's default).
+pub const N_MIN_N: f64 = 0.2;
 /// The greatest command of every trial [N] (softgrip's default).
 pub const N_MAX_N: f64 = 20.0;
 
+/// The ranges the families draw from, and what the controllers are told.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Ranges {
+    /// The harder ranges (`--hard`).
+    pub hard: bool,
+    /// Tell the controllers the shake family's actuator (`actuator_lag_s`,
+    /// `actuator_slew_n_per_s`); by default they are not told.
+    pub tell_actuator: bool,
+}
+
 /// One generated trial.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct Trial {
     /// Family name.
     pub family: &'static str,
@@ -73,6 +66,27 @@ pub struct Trial {
     pub scene: Scene,
     /// The scene as TOML, for traces and error messages.
     pub text: String,
+    /// What every controller believes, from the lab.
+    pub beliefs: Beliefs,
+    /// The finger's true static μ over the one the lab measured [-].
+    pub mu_ratio: f64,
+    /// Whether the scene lists the slip sensor.
+    pub sensor: bool,
+    /// The true limit the oracle asks.
+    pub limit: Arc<dyn TrueLimit + Send + Sync>,
+    /// The limit-surface ground truth the run loop is given (the plant itself on the
+    /// `fls` plant; on the brush plant only the run's bookkeeping reads it).
+    pub truth: Arc<Truth>,
+}
+
+impl std::fmt::Debug for Trial {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Trial")
+            .field("family", &self.family)
+            .field("index", &self.index)
+            .field("text", &self.text)
+            .finish()
+    }
 }
 
 /// The random stream of trial `index` of `family` under `seed`.
@@ -86,51 +100,26 @@ fn rng(seed: u64, family: &str, index: usize) -> ChaCha8Rng {
     r
 }
 
-/// The torsion capacity of the two-contact grasp on `finger` at `n_n` [N·m]:
-/// `2·μ·N·a(N)·pitch`, with the pitch of the symmetric patch at that aspect.
-pub fn grasp_torsion_capacity_nm(finger: &BenchFinger, n_n: f64) -> f64 {
-    let a = finger.c * n_n.powf(finger.gamma);
-    let pitch = softgrip::FlsModel::<f64>::new(softgrip::FlsConfig {
-        shape: match finger.shape {
-            FingerShape::Rect => softgrip::Shape::Rect {
-                aspect: finger.half_length_m / a,
-            },
-            FingerShape::Disc => softgrip::Shape::Disc,
-        },
-        k: finger.k,
-        skew: None,
-        order: softgrip::QuadratureOrder::DEFAULT,
-    })
-    .map(|m| m.pitch())
-    .unwrap_or(0.0);
-    2.0 * finger.mu * n_n * a * pitch
+/// What a family's generator draws besides the finger: the scene's text after the
+/// `[finger]` table, whether it lists the slip sensor, the true μ ratio.
+struct Load {
+    text: String,
+    sensor: bool,
+    mu_ratio: f64,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn header(
-    f: &BenchFinger,
-    duration_s: f64,
-    seed: u64,
-    effects: &[&str],
-    true_mu: f64,
-    mass: f64,
-    com: f64,
-) -> String {
+fn header(duration_s: f64, seed: u64, effects: &[&str]) -> String {
     let list: Vec<String> = effects.iter().map(|e| format!("\"{e}\"")).collect();
     format!(
-        "duration_s = {duration_s}\ntick_hz = 1000.0\nseed = {seed}\neffects = [{}]\n\n\
-         [finger]\nshape = \"{}\"\nk = {:?}\nmu = {true_mu:?}\nc = {:?}\ngamma = {:?}\n\
-         half_length_m = {:?}\n\n\
-         [object]\nmass_kg = {mass:?}\ncom_offset_m = {com:?}\ninertia_kg_m2 = {:?}\n\n",
-        list.join(", "),
-        f.shape.name(),
-        f.k,
-        f.c,
-        f.gamma,
-        f.half_length_m,
-        // A body about 30 mm in radius of gyration.
-        mass * 0.03 * 0.03,
+        "duration_s = {duration_s}\ntick_hz = 1000.0\nseed = {seed}\neffects = [{}]\n\n",
+        list.join(", ")
     )
+}
+
+fn object(mass: f64, com: f64, inertia: Option<f64>) -> String {
+    // By default a body about 30 mm in radius of gyration.
+    let inertia = inertia.unwrap_or(mass * 0.03 * 0.03);
+    format!("[object]\nmass_kg = {mass:?}\ncom_offset_m = {com:?}\ninertia_kg_m2 = {inertia:?}\n\n")
 }
 
 fn lift(start: f64, end: f64, accel: f64) -> String {
@@ -139,139 +128,203 @@ fn lift(start: f64, end: f64, accel: f64) -> String {
     )
 }
 
-/// Why no scene accepts `finger`: the scene parser's error on a trial's text (a value out
-/// of range names its `finger.` key).
-pub fn probe(finger: &BenchFinger) -> Result<(), String> {
-    let text = header(finger, 1.0, 0, &[], finger.mu, 0.1, 0.0);
-    Scene::parse(&text).map(|_| ()).map_err(|e| e.to_string())
+/// The `[controller]` table: what softgrip and the baselines believe, from the lab, and
+/// `extra` lines.
+fn controller(b: &Beliefs, extra: &str) -> String {
+    format!(
+        "[controller]\nmu = {:?}\nk = {:?}\nc_m_per_n_gamma = {:?}\ngamma = {:?}\n\
+         n_min_n = {N_MIN_N:?}\nn_max_n = {N_MAX_N:?}\nbaseline_mu = {:?}\n\
+         baseline_torsion_arm_m = {:?}\n{extra}",
+        b.mu, b.k, b.c, b.gamma, b.cone_mu, b.torsion_arm_m
+    )
 }
 
-/// Trial `index` of `family` under `seed` on the default finger, or `None` for an
-/// unknown family.
-pub fn trial(family: &str, seed: u64, index: usize) -> Option<Trial> {
-    trial_on(&BenchFinger::default(), family, seed, index)
-}
-
-/// Trial `index` of `family` under `seed` on `finger`, or `None` for an unknown family
-/// (or a finger no scene accepts).
-pub fn trial_on(finger: &BenchFinger, family: &str, seed: u64, index: usize) -> Option<Trial> {
-    let family: &'static str = NAMES.iter().find(|n| **n == family)?;
+/// Trial `index` of `family` under `seed`, its finger from `source`, or why it could not
+/// be built (an unknown family, a finger the lab cannot calibrate).
+pub fn trial_on(
+    source: &FingerSource,
+    ranges: &Ranges,
+    family: &str,
+    seed: u64,
+    index: usize,
+) -> Result<Trial, String> {
+    let family: &'static str = NAMES
+        .iter()
+        .find(|n| **n == family)
+        .ok_or_else(|| format!("no family \"{family}\""))?;
+    let why = |e: String| format!("{family} trial {index} (seed {seed}): {e}");
     let mut r = rng(seed, family, index);
     let scene_seed: u64 = r.random();
-    let text = match family {
-        "lift-hold" => lift_hold(finger, &mut r, scene_seed),
-        "shake" => shake(finger, &mut r, scene_seed),
-        "twist" => twist(finger, &mut r, scene_seed),
-        "mu-mismatch" => mu_mismatch(finger, &mut r, scene_seed, index),
-        "faults" => faults(finger, &mut r, scene_seed),
-        _ => return None,
+    let finger = TrialFinger::draw(source, &mut r, N_MAX_N)
+        .ok_or_else(|| why("no finger drawn carries N_max".into()))?;
+    let lab_rig = finger.rig(N_MIN_N, N_MAX_N).map_err(why)?;
+    let beliefs = lab::calibrate(
+        &lab::measure(lab_rig.as_ref(), r.random()),
+        finger.shape(),
+        finger.half_length_m(),
+    )
+    .map_err(why)?;
+    let capacity = 2.0
+        * lab_rig
+            .slip_onset(N_MAX_N, 0.0, 1e-3)
+            .map_or(0.0, |(_, m)| m);
+    let load = match family {
+        "lift-hold" => lift_hold(&mut r, &beliefs),
+        "shake" => shake(&mut r, &beliefs, ranges),
+        "twist" => twist(&mut r, &beliefs, ranges, capacity),
+        "mu-mismatch" => mu_mismatch(&mut r, &beliefs, ranges, index),
+        _ => faults(&mut r, &beliefs),
     };
-    let mut scene = Scene::parse(&text).ok()?;
+    let truth = finger.with_mu_scaled(load.mu_ratio);
+    let text = header_for(family, scene_seed, &load.text)
+        + &truth.toml((beliefs.k, beliefs.c, beliefs.gamma))
+        + &load.text;
+    let mut scene = Scene::parse(&text).map_err(|e| why(e.to_string()))?;
     scene.name = format!("{family}-{index}");
-    Some(Trial {
+    let run_truth = Arc::new(sim_run::build_truth(&scene).map_err(why)?);
+    let limit: Arc<dyn TrueLimit + Send + Sync> = match truth {
+        TrialFinger::Brush { .. } => {
+            let rig = truth.rig(N_MIN_N, N_MAX_N).map_err(why)?;
+            Arc::new(OnsetTable::build(rig.as_ref(), N_MIN_N, N_MAX_N).map_err(why)?)
+        }
+        TrialFinger::Fls(_) => run_truth.clone(),
+    };
+    Ok(Trial {
         family,
         index,
         scene,
         text,
+        beliefs,
+        mu_ratio: load.mu_ratio,
+        sensor: load.sensor,
+        limit,
+        truth: run_truth,
     })
 }
 
-/// A `lift-hold` trial's scene text, drawn from `r`.
-fn lift_hold(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
-    let believed = f.mu;
+/// The scene's top lines: duration and effects, by family (the load text says which
+/// effects it configures).
+fn header_for(family: &str, seed: u64, load: &str) -> String {
+    let mut effects = vec!["gravity", "sensor_noise"];
+    let duration = match family {
+        "shake" => {
+            effects.push("actuator");
+            1.5
+        }
+        "twist" => 1.3,
+        "faults" => {
+            effects.extend(["sensor_faults", "link_latency", "link_faults"]);
+            1.2
+        }
+        _ => 1.2,
+    };
+    if load.contains("[effect.slip_sensor]") {
+        effects.push("slip_sensor");
+    }
+    header(duration, seed, &effects)
+}
+
+/// A `lift-hold` trial, drawn from `r`.
+fn lift_hold(r: &mut ChaCha8Rng, b: &Beliefs) -> Load {
     let mass = r.random_range(0.05..=0.5);
     let com = r.random_range(0.0..=0.02);
     let accel = r.random_range(1.0..=5.0);
-    header(
-        f,
-        1.2,
-        scene_seed,
-        &["gravity", "sensor_noise"],
-        believed,
-        mass,
-        com,
-    ) + &lift(0.1, 0.6, accel)
-        + &format!("[controller]\nmu = {believed:?}\n")
+    Load {
+        text: object(mass, com, None) + &lift(0.1, 0.6, accel) + &controller(b, ""),
+        sensor: false,
+        mu_ratio: 1.0,
+    }
 }
 
-/// A `shake` trial's scene text, drawn from `r`.
-fn shake(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
-    let believed = f.mu;
+/// A `shake` trial, drawn from `r`.
+fn shake(r: &mut ChaCha8Rng, b: &Beliefs, ranges: &Ranges) -> Load {
     let mass = r.random_range(0.05..=0.3);
     let com = r.random_range(0.0..=0.01);
-    let freq = r.random_range(2.0..=8.0);
+    let (freq, tau) = if ranges.hard {
+        (r.random_range(6.0..=15.0), r.random_range(0.02..=0.06))
+    } else {
+        (r.random_range(2.0..=8.0), r.random_range(0.005..=0.03))
+    };
     let amp = r.random_range(2.0..=10.0);
-    let tau = r.random_range(0.005..=0.03);
     let slew = r.random_range(100.0..=500.0);
-    header(
-        f,
-        1.5,
-        scene_seed,
-        &["gravity", "sensor_noise", "actuator"],
-        believed,
-        mass,
-        com,
-    ) + &lift(0.05, 0.45, 2.0)
-        + &format!(
-            "[[task]]\nkind = \"shake\"\nstart_s = 0.5\nend_s = 1.5\n\
-             amplitude_m_s2 = {amp:?}\nfrequency_hz = {freq:?}\n\n\
-             [effect.actuator]\ntime_constant_s = {tau:?}\nslew_n_per_s = {slew:?}\n\
-             max_force_n = {N_MAX_N:?}\n\n\
-             [controller]\nmu = {believed:?}\nactuator_lag_s = {tau:?}\n\
-             actuator_slew_n_per_s = {slew:?}\n"
-        )
+    let told = if ranges.tell_actuator {
+        format!("actuator_lag_s = {tau:?}\nactuator_slew_n_per_s = {slew:?}\n")
+    } else {
+        String::new()
+    };
+    Load {
+        text: object(mass, com, None)
+            + &lift(0.05, 0.45, 2.0)
+            + &format!(
+                "[[task]]\nkind = \"shake\"\nstart_s = 0.5\nend_s = 1.5\n\
+                 amplitude_m_s2 = {amp:?}\nfrequency_hz = {freq:?}\n\n\
+                 [effect.actuator]\ntime_constant_s = {tau:?}\nslew_n_per_s = {slew:?}\n\
+                 max_force_n = {N_MAX_N:?}\n\n"
+            )
+            + &controller(b, &told),
+        sensor: false,
+        mu_ratio: 1.0,
+    }
 }
 
-/// A `twist` trial's scene text, drawn from `r`.
-fn twist(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
-    let believed = f.mu;
+/// A `twist` trial, drawn from `r`; `capacity_nm` is the grasp's torsion capacity at
+/// `N_max` (two contacts).
+fn twist(r: &mut ChaCha8Rng, b: &Beliefs, ranges: &Ranges, capacity_nm: f64) -> Load {
     let mass = r.random_range(0.02..=0.15);
     let com = r.random_range(0.0..=0.005);
-    let share = r.random_range(0.05..=1.0);
-    let inertia = 2e-4;
-    let moment = share * grasp_torsion_capacity_nm(f, N_MAX_N);
-    let mut t = header(
-        f,
-        1.3,
-        scene_seed,
-        &["gravity", "sensor_noise"],
-        believed,
-        mass,
-        com,
-    );
+    let share = if ranges.hard {
+        r.random_range(0.8..=1.0)
+    } else {
+        r.random_range(0.05..=1.0)
+    };
     // A fixed inertia about the grasp axis: the peak moment is I·α.
-    t = t.replace(
-        &format!("inertia_kg_m2 = {:?}", mass * 0.03 * 0.03),
-        &format!("inertia_kg_m2 = {inertia:?}"),
-    );
-    t + &format!(
-        "[[task]]\nkind = \"twist\"\nstart_s = 0.2\nend_s = 1.2\n\
-         angular_accel_rad_s2 = {:?}\n\n[controller]\nmu = {believed:?}\n",
-        moment / inertia
-    )
+    let inertia = 2e-4;
+    let moment = share * capacity_nm;
+    Load {
+        text: object(mass, com, Some(inertia))
+            + &format!(
+                "[[task]]\nkind = \"twist\"\nstart_s = 0.2\nend_s = 1.2\n\
+                 angular_accel_rad_s2 = {:?}\n\n",
+                moment / inertia
+            )
+            + &controller(b, ""),
+        sensor: false,
+        mu_ratio: 1.0,
+    }
 }
 
-/// A `mu-mismatch` trial's scene text, drawn from `r`; trial `index` lists the slip
-/// sensor when odd.
-fn mu_mismatch(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64, index: usize) -> String {
-    let believed = f.mu;
+/// A `mu-mismatch` trial, drawn from `r`; trial `index` lists the slip sensor when odd.
+fn mu_mismatch(r: &mut ChaCha8Rng, b: &Beliefs, ranges: &Ranges, index: usize) -> Load {
     let mass = r.random_range(0.05..=0.4);
     let com = r.random_range(0.0..=0.015);
     let accel = r.random_range(1.0..=4.0);
-    let ratio = r.random_range(0.7..=1.3);
+    let ratio = if ranges.hard {
+        r.random_range(0.5..=1.0)
+    } else {
+        r.random_range(0.7..=1.3)
+    };
     let sensor = index % 2 == 1;
-    let mut effects = vec!["gravity", "sensor_noise"];
-    if sensor {
-        effects.push("slip_sensor");
+    let threshold = r.random_range(0.2..=0.9);
+    let latency = r.random_range(0.002..=0.02);
+    let miss = r.random_range(0.0..=0.1);
+    let false_rate = r.random_range(0.0..=1.0);
+    let sensor_text = if sensor {
+        format!(
+            "[effect.slip_sensor]\nincipient_utilisation = {threshold:?}\nlatency_s = {latency:?}\n\
+             miss_probability = {miss:?}\nfalse_alarm_rate_hz = {false_rate:?}\n\n"
+        )
+    } else {
+        String::new()
+    };
+    Load {
+        text: object(mass, com, None) + &lift(0.1, 0.6, accel) + &sensor_text + &controller(b, ""),
+        sensor,
+        mu_ratio: ratio,
     }
-    header(f, 1.2, scene_seed, &effects, believed * ratio, mass, com)
-        + &lift(0.1, 0.6, accel)
-        + &format!("[controller]\nmu = {believed:?}\n")
 }
 
-/// A `faults` trial's scene text, drawn from `r`.
-fn faults(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
-    let believed = f.mu;
+/// A `faults` trial, drawn from `r`.
+fn faults(r: &mut ChaCha8Rng, b: &Beliefs) -> Load {
     let mass = r.random_range(0.05..=0.4);
     let com = r.random_range(0.0..=0.015);
     let accel = r.random_range(1.0..=4.0);
@@ -282,26 +335,18 @@ fn faults(f: &BenchFinger, r: &mut ChaCha8Rng, scene_seed: u64) -> String {
     let flip = r.random_range(0.0..=0.02);
     let trunc = r.random_range(0.0..=0.01);
     let drop = r.random_range(0.0..=0.02);
-    header(
-        f,
-        1.2,
-        scene_seed,
-        &[
-            "gravity",
-            "sensor_noise",
-            "sensor_faults",
-            "link_latency",
-            "link_faults",
-        ],
-        believed,
-        mass,
-        com,
-    ) + &lift(0.1, 0.6, accel)
-        + &format!(
-            "[effect.sensor_noise]\nforce_sd_n = {noise:?}\nnormal_sd_n = {noise:?}\n\n\
-             [effect.sensor_faults]\ndropout_prob = {dropout:?}\nnan_prob = {nan:?}\n\n\
-             [effect.link_latency]\ndelay_ticks = {delay}\n\n\
-             [effect.link_faults]\nbit_flip_prob = {flip:?}\ntruncate_prob = {trunc:?}\n\
-             drop_prob = {drop:?}\n\n[controller]\nmu = {believed:?}\n"
-        )
+    Load {
+        text: object(mass, com, None)
+            + &lift(0.1, 0.6, accel)
+            + &format!(
+                "[effect.sensor_noise]\nforce_sd_n = {noise:?}\nnormal_sd_n = {noise:?}\n\n\
+                 [effect.sensor_faults]\ndropout_prob = {dropout:?}\nnan_prob = {nan:?}\n\n\
+                 [effect.link_latency]\ndelay_ticks = {delay}\n\n\
+                 [effect.link_faults]\nbit_flip_prob = {flip:?}\ntruncate_prob = {trunc:?}\n\
+                 drop_prob = {drop:?}\n\n"
+            )
+            + &controller(b, ""),
+        sensor: false,
+        mu_ratio: 1.0,
+    }
 }

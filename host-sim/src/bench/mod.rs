@@ -13,20 +13,26 @@
 //! arguments into them.
 
 pub mod families;
+pub mod lab;
+pub mod onset_table;
 pub mod oracle;
 pub mod plot;
 pub mod report;
 pub mod sweep;
+pub mod trial_finger;
 
+use crate::experiment::FingerSpec;
 use crate::finger_file::FingerFile;
-use crate::sim::controllers::LinkKind;
+use crate::sim::controllers::{ControllerKind, LinkKind};
 use crate::sim::finger::FingerModel;
 use crate::sim::run::{self as sim_run, RunOptions};
+use families::Ranges;
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 use std::fmt;
 use std::path::{Path, PathBuf};
 use sweep::{Row, Sweep, TrialResult};
+use trial_finger::FingerSource;
 
 /// Trials per family that a pty check ([`BenchLink::Pty`]) also runs over the pty and
 /// compares.
@@ -59,8 +65,10 @@ pub struct BenchOptions {
     pub families: Vec<&'static str>,
     /// The controllers, each swept over its knob.
     pub sweeps: Vec<Sweep>,
-    /// Every trial's finger, and the μ every controller believes.
-    pub finger: families::BenchFinger,
+    /// Where the trials' fingers come from (and so the plant).
+    pub source: FingerSource,
+    /// The families' ranges and what the controllers are told.
+    pub ranges: Ranges,
     /// Trials per family (at least 1).
     pub trials: usize,
     /// Seed of the trials.
@@ -96,31 +104,34 @@ impl fmt::Display for BenchError {
 
 impl std::error::Error for BenchError {}
 
-/// The bench's finger from a finger file (`calibrate --out`'s, or a scene): its shape,
-/// pressure exponent and contact law, and the μ every controller believes; or why no
-/// trial can run on it (the limit-surface finger only; a value out of range names its
+/// The bench's finger from a finger file (`calibrate --out`'s, or a scene): the
+/// limit-surface finger every trial then runs on (its shape, pressure exponent, μ and
+/// contact law; the controllers still believe only what the lab measures of it); or why
+/// no trial can run on it (the limit-surface finger only; a value out of range names its
 /// key).
-pub fn finger_from_file(file: &FingerFile) -> Result<families::BenchFinger, String> {
+pub fn finger_from_file(file: &FingerFile) -> Result<FingerSpec, String> {
     let g = &file.finger;
     if g.model != FingerModel::Fls {
         return Err("bench runs the limit-surface finger (model = \"fls\")".into());
     }
-    let finger = families::BenchFinger {
+    let spec = FingerSpec {
         shape: g.shape,
         k: g.k,
         mu: file.believed_mu(),
         c: g.c,
         gamma: g.gamma,
         half_length_m: g.half_length_m,
+        skew: None,
     };
     // A finger no scene accepts is refused here, naming its key, not as a failed trial.
-    if families::trial_on(&finger, families::NAMES[0], 0, 0).is_none() {
-        return Err(match families::probe(&finger) {
-            Err(e) => e,
-            Ok(()) => "no trial can be built on it".into(),
-        });
-    }
-    Ok(finger)
+    families::trial_on(
+        &FingerSource::Fixed(spec),
+        &Ranges::default(),
+        families::NAMES[0],
+        0,
+        0,
+    )
+    .map(|_| spec)
 }
 
 /// Runs the bench `opts` describes and writes its files. `show` gets what the terminal
@@ -182,7 +193,8 @@ fn bench_family(
         None
     };
     let results = run_family(
-        &opts.finger,
+        &opts.source,
+        &opts.ranges,
         family,
         opts.seed,
         opts.trials,
@@ -193,13 +205,10 @@ fn bench_family(
     )
     .map_err(BenchError::Run)?;
     if opts.link == BenchLink::Pty {
-        check_pty(&opts.finger, family, opts.seed).map_err(BenchError::Run)?;
+        check_pty(&opts.source, &opts.ranges, family, opts.seed).map_err(BenchError::Run)?;
     }
     report::write_trials_csv(
-        &opts.finger,
         &opts.out.join(format!("trials-{family}.csv")),
-        family,
-        opts.seed,
         &opts.sweeps,
         &results,
     )
@@ -207,10 +216,12 @@ fn bench_family(
     Ok(sweep::rows(family, &opts.sweeps, &results))
 }
 
-/// Runs the trials `0..trials` of `family`, in parallel, in index order.
+/// Runs the trials `0..trials` of `family`, in parallel, in index order: each is drawn
+/// (its finger measured and every controller calibrated) and run against every sweep.
 #[allow(clippy::too_many_arguments)]
 pub fn run_family(
-    finger: &families::BenchFinger,
+    source: &FingerSource,
+    ranges: &Ranges,
     family: &str,
     seed: u64,
     trials: usize,
@@ -219,16 +230,11 @@ pub fn run_family(
     trace: Option<&Path>,
     bar: &ProgressBar,
 ) -> Result<Vec<TrialResult>, String> {
-    let first = families::trial_on(finger, family, seed, 0).ok_or("no such family")?;
-    // Every trial of a family has the same finger and force range, so one ground truth
-    // serves them all (each trial sets its own true μ).
-    let truth = sim_run::build_truth(&first.scene)?;
     (0..trials)
         .into_par_iter()
         .map(|i| {
-            let t = families::trial_on(finger, family, seed, i)
-                .ok_or_else(|| format!("{family}: trial {i} could not be built"))?;
-            let r = sweep::run_trial(&t, &truth, sweeps, link, trace);
+            let t = families::trial_on(source, ranges, family, seed, i)?;
+            let r = sweep::run_trial(&t, sweeps, link, trace);
             bar.inc(1);
             r
         })
@@ -237,13 +243,22 @@ pub fn run_family(
 
 /// Runs the first [`PTY_SAMPLE`] trials of `family` with softgrip (both modes, default
 /// knob) over the pty and over the direct link, and checks that the summaries agree.
-fn check_pty(finger: &families::BenchFinger, family: &str, seed: u64) -> Result<(), String> {
+fn check_pty(
+    source: &FingerSource,
+    ranges: &Ranges,
+    family: &str,
+    seed: u64,
+) -> Result<(), String> {
     for i in 0..PTY_SAMPLE {
-        let t = families::trial_on(finger, family, seed, i).ok_or("no such family")?;
-        for c in ["softgrip", "softgrip-table"] {
+        let t = families::trial_on(source, ranges, family, seed, i)?;
+        for c in [
+            ControllerKind::SoftgripEllipse,
+            ControllerKind::SoftgripTable,
+        ] {
+            let c = c.name();
             let opts = RunOptions {
                 skip_samples: true,
-                truth: None,
+                truth: Some(t.truth.as_ref()),
                 untimed: true,
             };
             let d = sim_run::run_with(&t.scene, c, &LinkKind::Direct, None, opts)?.summary;

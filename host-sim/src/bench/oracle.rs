@@ -1,17 +1,40 @@
 //! The oracle force: at every tick the least normal force within the scene's
 //! `[N_min, N_max]` that holds that tick's true load, with no lag, no noise and no margin:
-//! the exact true surface ([`Truth`]), the true μ, safety factor 1, and the contact at its
-//! equilibrium size `a = c·N^γ`. Where even `N_max` does not hold the load the oracle
-//! answers `N_max`.
+//! the plant's true limit ([`TrueLimit`]: on the limit-surface plant the exact surface
+//! ([`Truth`]) with the true μ and the contact at its equilibrium size `a = c·N^γ`; on the
+//! brush finger its tabulated gross-slip onsets, [`OnsetTable`]). Where even `N_max` does
+//! not hold the load the oracle answers `N_max`.
 //!
 //! The loads come from the same task and load effects as the run (gravity,
 //! disturbances), which do not depend on the controller, so the oracle is computed once
 //! per trial and shared by every controller and knob value.
 
+use super::onset_table::OnsetTable;
 use crate::sim::effects::World;
 use crate::sim::scene::Scene;
 use crate::sim::task;
 use crate::sim::truth::Truth;
+
+/// A plant's true limit: whether a load holds at a normal force.
+pub trait TrueLimit {
+    /// Whether the load `(ft_n, mn_nm)` (one contact's, [N] and [N·m]) holds at normal
+    /// force `n_n` [N].
+    fn holds(&self, ft_n: f64, mn_nm: f64, n_n: f64) -> bool;
+}
+
+impl TrueLimit for Truth {
+    fn holds(&self, ft_n: f64, mn_nm: f64, n_n: f64) -> bool {
+        self.evaluate(ft_n, mn_nm, n_n, self.half_width_m(n_n))
+            .utilisation
+            <= 1.0
+    }
+}
+
+impl TrueLimit for OnsetTable {
+    fn holds(&self, ft_n: f64, mn_nm: f64, n_n: f64) -> bool {
+        OnsetTable::holds(self, ft_n, mn_nm, n_n)
+    }
+}
 
 /// Relative width [-] to which the least force is bracketed (the answer is the upper end,
 /// which holds).
@@ -22,19 +45,14 @@ pub const REL_TOL: f64 = 1e-6;
 /// `guess` [N] (the previous tick's answer) only speeds the search: it is bracketed
 /// within ±5 % of it when it can be, then bisected to [`REL_TOL`].
 pub fn least_holding_force_n(
-    truth: &Truth,
+    truth: &dyn TrueLimit,
     ft_n: f64,
     mn_nm: f64,
     n_min_n: f64,
     n_max_n: f64,
     guess: Option<f64>,
 ) -> f64 {
-    let holds = |n: f64| {
-        truth
-            .evaluate(ft_n, mn_nm, n, truth.half_width_m(n))
-            .utilisation
-            <= 1.0
-    };
+    let holds = |n: f64| truth.holds(ft_n, mn_nm, n);
     if holds(n_min_n) {
         return n_min_n;
     }
@@ -73,7 +91,7 @@ pub fn least_holding_force_n(
 /// holding forces), with the scene's force limits `[n_min_n, n_max_n]`.
 pub fn mean_oracle_force_n(
     scene: &Scene,
-    truth: &Truth,
+    truth: &dyn TrueLimit,
     n_min_n: f64,
     n_max_n: f64,
 ) -> Result<f64, String> {

@@ -71,29 +71,20 @@ pub fn write_json(
 }
 
 /// Writes `trials-FAMILY.csv`: one line per trial, controller and knob value, with the
-/// trial's true μ [-], whether it lists the slip sensor, whether it is holdable and its
+/// trial's true μ over the measured one [-], whether it lists the slip sensor, whether it is holdable and its
 /// oracle force [N], then the run's drop, slip events, slip distance [m], mean and peak
 /// force [N].
 pub fn write_trials_csv(
-    finger: &super::families::BenchFinger,
     path: &Path,
-    family: &str,
-    seed: u64,
     sweeps: &[super::sweep::Sweep],
     results: &[super::sweep::TrialResult],
 ) -> std::io::Result<()> {
     let mut s = String::from(
-        "trial,true_mu,slip_sensor,holdable,oracle_mean_n,controller,knob_value,dropped,\
+        "trial,mu_ratio,slip_sensor,holdable,oracle_mean_n,controller,knob_value,dropped,\
          slip_events,slip_distance_m,mean_force_n,peak_force_n\n",
     );
     for (i, r) in results.iter().enumerate() {
-        let (mu, sensor) =
-            super::families::trial_on(finger, family, seed, i).map_or((f64::NAN, false), |t| {
-                (
-                    t.scene.finger.mu,
-                    t.scene.effects.iter().any(|e| e == "slip_sensor"),
-                )
-            });
+        let (mu, sensor) = (r.mu_ratio, r.sensor);
         let mut col = 0;
         for sw in sweeps {
             for &v in sw.values {

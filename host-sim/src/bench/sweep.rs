@@ -7,7 +7,6 @@ use crate::sim::controllers::{ControllerKind, LinkKind};
 use crate::sim::report;
 use crate::sim::run::{self, RunOptions};
 use crate::sim::scene::Scene;
-use crate::sim::truth::Truth;
 use serde::Serialize;
 use softgrip::controller::ControllerConfig;
 use std::path::Path;
@@ -29,54 +28,49 @@ pub struct Sweep {
 /// model-based baselines' default.
 const DEFAULT_SAFETY: f64 = ControllerConfig::DEFAULT.safety;
 
-/// Safety factors swept for softgrip (around the default 1.3).
-const SOFTGRIP_SAFETY: &[f64] = &[1.0, 1.1, 1.2, 1.25, 1.3, 1.35, 1.4, 1.5, 1.75, 2.0];
-/// Safety factors swept for the model-based baselines (default 1.3, as softgrip's).
-const BASELINE_SAFETY: &[f64] = &[1.0, 1.3, 1.6, 2.0, 3.0];
+/// The safety factors every controller with one sweeps: 1.0 to 2.0 in steps of 0.05,
+/// then 2.5 and 3.0.
+pub const SAFETY_GRID: [f64; 23] = [
+    1.0, 1.05, 1.1, 1.15, 1.2, 1.25, 1.3, 1.35, 1.4, 1.45, 1.5, 1.55, 1.6, 1.65, 1.7, 1.75, 1.8,
+    1.85, 1.9, 1.95, 2.0, 2.5, 3.0,
+];
 
-/// Every controller with its knob, in the order of the tables.
+/// The constant grips: 0.5 N to `N_max` (20 N) in steps of 0.5 N.
+pub const CONSTANT_GRID_N: [f64; 40] = [
+    0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0, 6.5, 7.0, 7.5, 8.0, 8.5, 9.0, 9.5,
+    10.0, 10.5, 11.0, 11.5, 12.0, 12.5, 13.0, 13.5, 14.0, 14.5, 15.0, 15.5, 16.0, 16.5, 17.0, 17.5,
+    18.0, 18.5, 19.0, 19.5, 20.0,
+];
+
+const fn safety_sweep(controller: ControllerKind) -> Sweep {
+    Sweep {
+        controller,
+        knob: "safety",
+        values: &SAFETY_GRID,
+        default: DEFAULT_SAFETY,
+    }
+}
+
+/// Every controller with its knob, in the order of the tables: each softgrip mode is a
+/// controller of its own, and every controller with a safety factor sweeps the same
+/// [`SAFETY_GRID`].
 pub const SWEEPS: [Sweep; 7] = [
-    Sweep {
-        controller: ControllerKind::Softgrip,
-        knob: "safety",
-        values: SOFTGRIP_SAFETY,
-        default: DEFAULT_SAFETY,
-    },
-    Sweep {
-        controller: ControllerKind::SoftgripTable,
-        knob: "safety",
-        values: SOFTGRIP_SAFETY,
-        default: DEFAULT_SAFETY,
-    },
+    safety_sweep(ControllerKind::SoftgripEllipse),
+    safety_sweep(ControllerKind::SoftgripTable),
     Sweep {
         controller: ControllerKind::Constant,
         knob: "force_n",
-        values: &[2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0],
+        values: &CONSTANT_GRID_N,
         default: 10.0,
     },
-    Sweep {
-        controller: ControllerKind::Coulomb,
-        knob: "safety",
-        values: BASELINE_SAFETY,
-        default: DEFAULT_SAFETY,
-    },
-    Sweep {
-        controller: ControllerKind::Box,
-        knob: "safety",
-        values: BASELINE_SAFETY,
-        default: DEFAULT_SAFETY,
-    },
-    Sweep {
-        controller: ControllerKind::FixedTorsion,
-        knob: "safety",
-        values: BASELINE_SAFETY,
-        default: DEFAULT_SAFETY,
-    },
+    safety_sweep(ControllerKind::Coulomb),
+    safety_sweep(ControllerKind::Box),
+    safety_sweep(ControllerKind::FixedTorsion),
     // The slip servo has no model to scale: its knob is the force it relaxes to.
     Sweep {
         controller: ControllerKind::SlipServo,
         knob: "floor_n",
-        values: &[0.2, 1.0, 2.0, 4.0],
+        values: &[0.2, 0.5, 1.0, 2.0, 4.0],
         default: 0.2,
     },
 ];
@@ -110,6 +104,10 @@ pub struct RunRow {
 /// One trial against every controller and knob value.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrialResult {
+    /// The finger's true static μ over the one the lab measured [-].
+    pub mu_ratio: f64,
+    /// Whether the trial lists the slip sensor.
+    pub sensor: bool,
     /// Whether `constant` at the scene's `N_max` holds it.
     pub holdable: bool,
     /// The oracle's time-averaged force [N].
@@ -118,23 +116,21 @@ pub struct TrialResult {
     pub runs: Vec<RunRow>,
 }
 
-/// Runs `trial` against every sweep in `sweeps` on `link`; `truth` is the family's
-/// ground truth (its μ is replaced by the trial's true μ). With `trace`, each run's
+/// Runs `trial` against every sweep in `sweeps` on `link`. With `trace`, each run's
 /// per-tick samples are written as CSV under that directory.
 pub fn run_trial(
     trial: &Trial,
-    truth: &Truth,
     sweeps: &[Sweep],
     link: &LinkKind,
     trace: Option<&Path>,
 ) -> Result<TrialResult, String> {
     let scene = &trial.scene;
-    let truth = truth.with_mu(scene.finger.mu);
     let cfg = run::controller_config(scene).map_err(|e| e.to_string())?;
-    let oracle_mean_n = oracle::mean_oracle_force_n(scene, &truth, cfg.n_min_n, cfg.n_max_n)?;
+    let oracle_mean_n =
+        oracle::mean_oracle_force_n(scene, trial.limit.as_ref(), cfg.n_min_n, cfg.n_max_n)?;
     let options = RunOptions {
         skip_samples: trace.is_none(),
-        truth: Some(&truth),
+        truth: Some(trial.truth.as_ref()),
         untimed: true,
     };
     let one = |s: &Scene, controller: &str, tag: &str| -> Result<RunRow, String> {
@@ -153,19 +149,31 @@ pub fn run_trial(
         })
     };
     let constant = ControllerKind::Constant;
-    let full = with_knob(scene, constant, cfg.n_max_n);
-    let holdable = !one(&full, constant.name(), "holdable")?.dropped;
     let mut runs = Vec::new();
+    let mut holdable = None;
     for sw in sweeps {
         for &v in sw.values {
-            runs.push(one(
+            let row = one(
                 &with_knob(scene, sw.controller, v),
                 sw.controller.name(),
                 &format!("{}{v}", sw.knob),
-            )?);
+            )?;
+            if sw.controller == constant && v == cfg.n_max_n {
+                holdable = Some(!row.dropped);
+            }
+            runs.push(row);
         }
     }
+    let holdable = match holdable {
+        Some(h) => h,
+        None => {
+            let full = with_knob(scene, constant, cfg.n_max_n);
+            !one(&full, constant.name(), "holdable")?.dropped
+        }
+    };
     Ok(TrialResult {
+        mu_ratio: trial.mu_ratio,
+        sensor: trial.sensor,
         holdable,
         oracle_mean_n,
         runs,

@@ -2,8 +2,9 @@
 //! [`crate::bench::run`].
 
 use crate::args::LinkName;
-use crate::bench::families::{self, BenchFinger};
+use crate::bench::families::{self, Ranges};
 use crate::bench::sweep::{Sweep, SWEEPS};
+use crate::bench::trial_finger::{BenchPlant, FingerSource};
 use crate::bench::{self, BenchError, BenchLink, BenchOptions};
 use crate::finger_file::FingerFile;
 use crate::sim::controllers::ControllerChoice;
@@ -42,20 +43,46 @@ pub struct BenchArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// A finger file (`host-sim calibrate --out`'s, or a scene): every trial's finger and
-    /// the μ every controller believes (a scene's [controller] mu if set); default the
-    /// shipped scenes' finger. The limit-surface finger only.
+    /// The plant the trials run on: brush (the brush finger, a physical plant softgrip
+    /// does not model, drawn per trial) or fls (softgrip's own limit surface, a finger
+    /// drawn per trial).
+    #[arg(long, value_enum, default_value = "brush")]
+    pub plant: PlantName,
+    /// The harder ranges: shakes of 6-15 Hz through 20-60 ms actuators, twists of
+    /// 80-100 % of the capacity, a true mu 0.5-1.0 x the measured one.
+    #[arg(long)]
+    pub hard: bool,
+    /// Tell the controllers the shake family's actuator (lag and slew); by default they
+    /// are not told.
+    #[arg(long)]
+    pub tell_actuator: bool,
+    /// A finger file (`host-sim calibrate --out`'s, or a scene): every trial runs on this
+    /// limit-surface finger instead of a drawn one (the controllers still believe only
+    /// what the lab measures of it). Implies --plant fls.
     #[arg(long)]
     pub finger: Option<PathBuf>,
 }
 
-/// The finger of `--finger`, or the default.
-fn bench_finger(args: &BenchArgs) -> Result<BenchFinger, CliError> {
+/// `--plant`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PlantName {
+    /// The brush finger.
+    Brush,
+    /// softgrip's limit surface.
+    Fls,
+}
+
+/// The fingers' source: `--finger`'s, or drawn on `--plant`.
+fn finger_source(args: &BenchArgs) -> Result<FingerSource, CliError> {
     let Some(path) = &args.finger else {
-        return Ok(BenchFinger::default());
+        return Ok(FingerSource::Drawn(match args.plant {
+            PlantName::Brush => BenchPlant::Brush,
+            PlantName::Fls => BenchPlant::Fls,
+        }));
     };
     let file = FingerFile::load(path, "--finger")?;
     bench::finger_from_file(&file)
+        .map(FingerSource::Fixed)
         .map_err(|why| CliError::Usage(format!("--finger: {}: {why}", path.display())))
 }
 
@@ -95,7 +122,7 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
 /// The options `args` ask for, or the first bad argument.
 pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
     let (families, sweeps) = selection(args)?;
-    let finger = bench_finger(args)?;
+    let source = finger_source(args)?;
     if args.trials == 0 {
         return Err(CliError::Usage("--trials: must be at least 1".into()));
     }
@@ -113,7 +140,11 @@ pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
     Ok(BenchOptions {
         families,
         sweeps,
-        finger,
+        source,
+        ranges: Ranges {
+            hard: args.hard,
+            tell_actuator: args.tell_actuator,
+        },
         trials: args.trials,
         seed: args.seed,
         link,

@@ -10,8 +10,10 @@
 //! | `fixed-torsion` | `N = s·sqrt((f_t/μ)² + (m_n/(μ_t))²)`, `μ_t = μ·a_ref·pitch`: the elliptic soft-contact cone of physics engines, with a patch of constant size |
 //! | `slip-servo` | starts light; after a detected slip raises the force by half plus 0.5 N, then relaxes slowly |
 //!
-//! `a_ref` is the contact half-width at the constant baseline's force: the size a
-//! fixed-patch model would be tuned at.
+//! `a_ref·pitch` is the fixed patch's torsion arm: by default that of the contact at the
+//! constant baseline's force, the size a fixed-patch model would be tuned at; a scene can
+//! give it (`controller.baseline_torsion_arm_m`, as the bench does from each finger's
+//! torsion test), and the baselines' μ (`controller.baseline_mu`, from a slip test).
 
 use crate::link::direct::DirectLink;
 use crate::link::pty::PtyLink;
@@ -388,6 +390,18 @@ impl Limits {
     }
 }
 
+/// What the baselines are told besides softgrip's configuration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BaselineSettings {
+    /// The constant baseline's force [N] (and the force at which the default fixed patch
+    /// is taken).
+    pub constant_n: f64,
+    /// The μ of the cone, box and fixed-torsion; `None`: softgrip's.
+    pub mu: Option<f64>,
+    /// The fixed patch's torsion arm [m]; `None`: `a·pitch` at `constant_n`.
+    pub torsion_arm_m: Option<f64>,
+}
+
 /// The in-process baselines.
 #[derive(Debug)]
 pub struct Baseline {
@@ -413,17 +427,18 @@ enum Kind {
 }
 
 impl Baseline {
-    /// The baseline `name` for a controller configuration; `constant_n` is the constant
-    /// baseline's force and the force at which the fixed patch size is taken. `Ok(None)`
-    /// for a name that is not a baseline; an error (naming the scene key
-    /// `controller.constant_force_n`) when the fixed patch at that force has no limit
-    /// surface (a force that is not finite and positive, or whose contact size gives an
-    /// aspect `l/a` of 0 or ∞).
+    /// The baseline `name` for a controller configuration and the baselines' settings
+    /// (the constant force, at which the default fixed patch size is taken; μ and the
+    /// torsion arm if given). `Ok(None)` for a name that is not a baseline; an error
+    /// (naming the scene key) when the constant force is not finite and positive, when
+    /// the fixed patch at that force has no limit surface (a contact size that gives an
+    /// aspect `l/a` of 0 or ∞), or when a given μ or arm is not finite and positive.
     pub fn new(
         name: &str,
         cfg: &ControllerConfig,
-        constant_n: f64,
+        settings: &BaselineSettings,
     ) -> Result<Option<Self>, String> {
+        let constant_n = settings.constant_n;
         let kind = match ControllerKind::from_name(name) {
             Some(ControllerKind::Constant) => Kind::Constant,
             Some(ControllerKind::Coulomb) => Kind::Coulomb,
@@ -440,6 +455,17 @@ impl Baseline {
         };
         if !(constant_n > 0.0 && constant_n.is_finite()) {
             return Err(bad("must be a finite number > 0".into()));
+        }
+        for (key, v) in [
+            ("baseline_mu", settings.mu),
+            ("baseline_torsion_arm_m", settings.torsion_arm_m),
+        ] {
+            if let Some(v) = v.filter(|v| !(*v > 0.0 && v.is_finite())) {
+                return Err(format!(
+                    "controller.{key}: {} must be a finite number > 0",
+                    crate::input::short_num(v)
+                ));
+            }
         }
         // The fixed patch: the contact's size and pitch at the constant force.
         let a_ref = cfg.c_m_per_n_gamma * constant_n.powf(cfg.gamma);
@@ -473,9 +499,9 @@ impl Baseline {
                 rise: cfg.rise_rate_n_per_s * dt,
                 fall: cfg.fall_rate_n_per_s * dt,
             },
-            mu: cfg.mu,
+            mu: settings.mu.unwrap_or(cfg.mu),
             safety: cfg.safety,
-            torsion_arm_m: a_ref * pitch,
+            torsion_arm_m: settings.torsion_arm_m.unwrap_or(a_ref * pitch),
             constant_n,
             command: if kind == Kind::Constant {
                 constant_n
@@ -572,7 +598,7 @@ pub fn builds() -> BTreeMap<String, usize> {
 pub fn build(
     name: &str,
     cfg: &Checked,
-    constant_n: f64,
+    baseline: &BaselineSettings,
     link: &LinkKind,
 ) -> Result<Box<dyn GripController>, String> {
     if let Ok(mut builds) = BUILDS.lock() {
@@ -582,7 +608,7 @@ pub fn build(
         Some(mode) => SoftgripLink::start(name, *cfg.with_mode(mode).config(), link)
             .map(|c| Box::new(c) as Box<dyn GripController>)
             .map_err(|e| e.to_string()),
-        None => Baseline::new(name, cfg, constant_n)?
+        None => Baseline::new(name, cfg, baseline)?
             .map(|b| Box::new(b) as Box<dyn GripController>)
             .ok_or_else(|| {
                 format!(

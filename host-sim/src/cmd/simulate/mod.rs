@@ -307,13 +307,10 @@ fn check_scene(
             crate::sim::run::build_error(&e, &scene.controller, &checked).to_string()
         })?;
     }
-    // The baselines' fixed patch (at controller.constant_force_n).
-    let constant_n = scene
-        .controller
-        .constant_force_n
-        .unwrap_or(cfg.fault_force_n);
+    // The baselines' fixed patch (at controller.constant_force_n, unless given).
+    let baseline = scene.controller.baseline(cfg.fault_force_n);
     for c in names.iter().filter(|c| !c.is_softgrip()) {
-        controllers::Baseline::new(c.name(), &cfg, constant_n)?;
+        controllers::Baseline::new(c.name(), &cfg, &baseline)?;
     }
     Ok(cfg)
 }

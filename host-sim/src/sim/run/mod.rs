@@ -195,10 +195,7 @@ fn run_into(
     mut sink: Option<&mut dyn SampleSink>,
 ) -> Result<RunOutput, String> {
     let wall = Instant::now();
-    let constant_n = scene
-        .controller
-        .constant_force_n
-        .unwrap_or(cfg.fault_force_n);
+    let baseline = scene.controller.baseline(cfg.fault_force_n);
     let mut pipeline = scene.pipeline().map_err(|e| e.to_string())?;
     pipeline.set_timed(!options.untimed);
     let built;
@@ -215,7 +212,7 @@ fn run_into(
             &built
         }
     };
-    let ctl = controllers::build(controller, cfg, constant_n, link_kind)?;
+    let ctl = controllers::build(controller, cfg, &baseline, link_kind)?;
     // The brush finger, when the scene's finger is one: its plant replaces the limit
     // surface and the quasi-static slip accounting.
     let brush = scene

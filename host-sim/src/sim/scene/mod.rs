@@ -127,11 +127,18 @@ fn default_inertia() -> f64 {
 /// The scene's `[controller]` table: softgrip's configuration fields, overlaid on the
 /// configuration the finger gives (`crate::sim::run::controller_config`; `mu` defaults to
 /// the finger's, the true one, which the ground truth always uses), and the baselines'
-/// own setting.
+/// own settings.
 #[derive(Debug, Clone, Default, Deserialize)]
 pub struct ControllerSettings {
     /// The force of the `constant` baseline [N]; default the fault force.
     pub constant_force_n: Option<f64>,
+    /// The μ the cone, box and fixed-torsion baselines believe (e.g. from a slip test);
+    /// default softgrip's `mu`.
+    pub baseline_mu: Option<f64>,
+    /// The torsion arm `μ_t/μ` [m] of the box and fixed-torsion baselines' fixed patch
+    /// (e.g. from a torsion test); default `a·pitch` of the contact at
+    /// `constant_force_n`.
+    pub baseline_torsion_arm_m: Option<f64>,
     /// Fields of softgrip's `ControllerConfig`, as written (read by
     /// [`crate::config::overlay`]: a key it does not have is an error).
     #[serde(flatten)]
@@ -139,6 +146,15 @@ pub struct ControllerSettings {
 }
 
 impl ControllerSettings {
+    /// The baselines' settings, with `fault_force_n` [N] the constant force's default.
+    pub fn baseline(&self, fault_force_n: f64) -> crate::sim::controllers::BaselineSettings {
+        crate::sim::controllers::BaselineSettings {
+            constant_n: self.constant_force_n.unwrap_or(fault_force_n),
+            mu: self.baseline_mu,
+            torsion_arm_m: self.baseline_torsion_arm_m,
+        }
+    }
+
     /// The number the table sets for `field`, if any (an integer is read as a float, as
     /// the configuration reads it).
     pub fn number(&self, field: &str) -> Option<f64> {

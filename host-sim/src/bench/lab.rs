@@ -5,8 +5,15 @@
 //! with 2 % relative noise on every recorded value ([`LAB_NOISE`]): an indentation test
 //! (contact half-width), a slip test (tangential ramps) and a torsion test (moment
 //! ramps). From those rows:
-//! - **softgrip** gets `μ`, `k`, `c` and `γ` from `softgrip_calibrate` (the same fit as
-//!   `host-sim calibrate`, on a surface grid shared by every trial of a shape);
+//! - **softgrip** gets `k` and `γ` from `softgrip_calibrate` (the same fit as
+//!   `host-sim calibrate`, on a surface grid shared by every trial of a shape), `μ` from
+//!   the slip test (as the cone), and the scale `c` of its contact law refitted to the
+//!   torsion test at that `μ`, `k` and `γ` ([`friction_contact_c`]): the contact size
+//!   that friction sees. On a finger softgrip models this is the indentation's `c`; on
+//!   the brush finger, whose pressure is more peaked at the centre than any `k ≥ 1`
+//!   allows, the joint fit would otherwise lower `μ` to fit the torsion onsets and ask
+//!   every tangential load for more force than it needs, while still overrating the
+//!   finger's torsion;
 //! - **the cone** (`coulomb`) gets `μ` from the slip test: the geometric mean of the
 //!   onsets' `f_t/N`;
 //! - **`fixed-torsion` and `box`** get that `μ` and their fixed patch from the torsion
@@ -117,12 +124,63 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
         of(OnsetKind::Torsion).map(|o| o.torsional_moment_nm / (cone_mu * o.normal_force_n)),
     )
     .ok_or("calibration: no torsion onset")?;
+    let torsion: Vec<&SlipOnset> = of(OnsetKind::Torsion).collect();
+    let c = friction_contact_c(
+        grid(shape)?,
+        &setup,
+        (cone_mu, cal.k.value, cal.gamma.value),
+        cal.c.value,
+        &torsion,
+    );
     Ok(Beliefs {
-        mu: cal.mu.value,
+        mu: cone_mu,
         k: cal.k.value,
-        c: cal.c.value,
+        c,
         gamma: cal.gamma.value,
         cone_mu,
         torsion_arm_m,
     })
+}
+
+/// The scale `c` of the contact law `a = c·N^γ` [m/N^γ] at which the model's pure-torsion
+/// limit `μ·N·a(N)·pitch(k, l/a(N))` matches the torsion onsets on average in `ln m`
+/// (`(μ, k, γ)` fixed; 60 bisections in `ln c` within a factor e³ of `c0`, the
+/// indentation's); `c0` when there is no torsion onset.
+pub fn friction_contact_c(
+    grid: &SurfaceGrid,
+    setup: &Setup,
+    (mu, k, gamma): (f64, f64, f64),
+    c0: f64,
+    torsion: &[&SlipOnset],
+) -> f64 {
+    if torsion.is_empty() {
+        return c0;
+    }
+    let kappa = 1.0 / k;
+    // Mean of ln(measured / modelled): decreasing in ln c.
+    let residual = |ln_c: f64| {
+        let sum: f64 = torsion
+            .iter()
+            .map(|o| {
+                let n = o.normal_force_n;
+                let a = ln_c.exp() * n.powf(gamma);
+                let pitch = grid.pitch(kappa, setup.half_length_m / a);
+                (o.torsional_moment_nm / (mu * n * a * pitch)).ln()
+            })
+            .sum();
+        sum / torsion.len() as f64
+    };
+    let (mut lo, mut hi) = (c0.ln() - 3.0, c0.ln() + 3.0);
+    if !(residual(lo) > 0.0) || !(residual(hi) < 0.0) {
+        return c0;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if residual(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (0.5 * (lo + hi)).exp()
 }

@@ -9,11 +9,11 @@
 //! `|(f_t/F(N), m_n/M(N))| ≤ ρ(N, φ)`, with `ln F`, `ln M` interpolated linearly in
 //! `ln N` and `ρ` bilinearly in `(ln N, φ)`.
 //!
-//! Accuracy: the limits `F`, `M` are power laws in `N` to within a few per mille on the
-//! brush finger (its contact grows smoothly), so the interpolation error is dominated by
-//! `ρ` between angles, under 1 % for convex limit curves sampled every 22.5°. The oracle
-//! is the reference every controller is divided by, so an error common to a trial
-//! scales all of them alike. Cost: `FORCE_NODES × (ANGLES − 2) + 2·FORCE_NODES` onsets
+//! Accuracy: on rays between the nodes (forces between its force nodes, directions
+//! between its angles) the tabulated edge is within 2.3 % of the finger's own onset
+//! (`cargo test --release -p host-sim --test bench_lab -- --nocapture` prints the worst
+//! case, two drawn brush fingers, 12 rays each). The oracle is the reference every
+//! controller is divided by, so an error common to a trial scales all of them alike. Cost: `FORCE_NODES × (ANGLES − 2) + 2·FORCE_NODES` onsets
 //! to build (about 0.6 s on a 16×16 brush finger), a few flops per lookup.
 
 use crate::experiment::Rig;

@@ -71,7 +71,7 @@ pub fn write_json(
 }
 
 /// Writes `trials-FAMILY.csv`: one line per trial, controller and knob value, with the
-/// trial's true μ over the measured one [-], whether it lists the slip sensor, whether it is holdable and its
+/// trial's true μ [-] and its ratio to the measured one [-], whether it lists the slip sensor, whether it is holdable and its
 /// oracle force [N], then the run's drop, slip events, slip distance [m], mean and peak
 /// force [N].
 pub fn write_trials_csv(
@@ -80,11 +80,11 @@ pub fn write_trials_csv(
     results: &[super::sweep::TrialResult],
 ) -> std::io::Result<()> {
     let mut s = String::from(
-        "trial,mu_ratio,slip_sensor,holdable,oracle_mean_n,controller,knob_value,dropped,\
+        "trial,true_mu,mu_ratio,slip_sensor,holdable,oracle_mean_n,controller,knob_value,dropped,\
          slip_events,slip_distance_m,mean_force_n,peak_force_n\n",
     );
     for (i, r) in results.iter().enumerate() {
-        let (mu, sensor) = (r.mu_ratio, r.sensor);
+        let (mu, ratio, sensor) = (r.true_mu, r.mu_ratio, r.sensor);
         let mut col = 0;
         for sw in sweeps {
             for &v in sw.values {
@@ -92,7 +92,7 @@ pub fn write_trials_csv(
                 col += 1;
                 let _ = writeln!(
                     s,
-                    "{i},{mu},{sensor},{},{},{},{v},{},{},{},{},{}",
+                    "{i},{mu},{ratio},{sensor},{},{},{},{v},{},{},{},{},{}",
                     r.holdable,
                     r.oracle_mean_n,
                     sw.controller.name(),

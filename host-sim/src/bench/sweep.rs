@@ -104,6 +104,8 @@ pub struct RunRow {
 /// One trial against every controller and knob value.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrialResult {
+    /// The finger's true static μ [-].
+    pub true_mu: f64,
     /// The finger's true static μ over the one the lab measured [-].
     pub mu_ratio: f64,
     /// Whether the trial lists the slip sensor.
@@ -172,6 +174,7 @@ pub fn run_trial(
         }
     };
     Ok(TrialResult {
+        true_mu: scene.finger.mu,
         mu_ratio: trial.mu_ratio,
         sensor: trial.sensor,
         holdable,

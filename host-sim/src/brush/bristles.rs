@@ -89,6 +89,47 @@ impl Bristles {
         }
     }
 
+    /// How far the finger's grip on the object has slipped: the rigid motion `(u, θ)`
+    /// that best fits (least squares weighted by the pressure, about the origin of the
+    /// patch) the anchors of the loaded elements (`p > 0`), each anchor being the
+    /// object's point at which its bristle would be unstretched. A stuck bristle's anchor
+    /// never moves, so the elastic stretch of the layer, which springs back when the load
+    /// goes, is not slip; a slid anchor has moved with the object. The weights make the
+    /// elements that carry the grip count most, the lightly pressed edge of the patch
+    /// least. The zero pose when nothing is loaded, no rotation when the loaded elements
+    /// are all at one point. Cost: two passes over the elements.
+    pub fn slip_pose(&self, patch: &Patch, pressure_pa: &[f64]) -> Pose {
+        let (mut w, mut sx, mut sy, mut sax, mut say) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+            if p > 0.0 {
+                w += p;
+                sx += p * patch.x_m[i];
+                sy += p * patch.y_m[i];
+                sax += p * self.anchor_x_m[i];
+                say += p * self.anchor_y_m[i];
+            }
+        }
+        if !(w > 0.0 && w.is_finite()) {
+            return Pose::default();
+        }
+        let (xm, ym, axm, aym) = (sx / w, sy / w, sax / w, say / w);
+        let (mut num, mut den) = (0.0, 0.0);
+        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+            if p > 0.0 {
+                let (x, y) = (patch.x_m[i] - xm, patch.y_m[i] - ym);
+                let (ax, ay) = (self.anchor_x_m[i] - axm, self.anchor_y_m[i] - aym);
+                num += p * (x * ay - y * ax);
+                den += p * (x * x + y * y);
+            }
+        }
+        let theta = if den > 0.0 { num / den } else { 0.0 };
+        Pose {
+            ux_m: axm + theta * ym,
+            uy_m: aym - theta * xm,
+            theta_rad: theta,
+        }
+    }
+
     /// `(loaded, sliding)`: the elements with `p > 0` and those of them that slid in the
     /// last update.
     pub fn counts(&self, pressure_pa: &[f64]) -> (usize, usize) {

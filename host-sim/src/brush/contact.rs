@@ -97,6 +97,12 @@ impl Contact {
             .update(&self.patch, &self.pressure_pa, q, true)
     }
 
+    /// How far the grip has slipped ([`Bristles::slip_pose`]): the object's pose less the
+    /// layer's elastic stretch.
+    pub fn slip_pose(&self) -> Pose {
+        self.bristles.slip_pose(&self.patch, &self.pressure_pa)
+    }
+
     /// Resets the bristles to zero stretch at `q`.
     pub fn relax(&mut self, q: Pose) {
         self.bristles.relax(&self.patch, q);

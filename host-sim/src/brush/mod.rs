@@ -148,9 +148,12 @@ pub struct PlantReport {
     pub stuck_fraction: f64,
     /// Whether the contact slid grossly: no loaded element stuck while the object moved.
     pub gross_slip: bool,
-    /// The object's translation relative to the fingertips, `|(u_x, u_y)|` [m].
+    /// How far the grip has slipped, `|(u_x, u_y)|` [m]: the object's translation
+    /// relative to the fingertips less the soft layer's elastic stretch
+    /// ([`bristles::Bristles::slip_pose`]).
     pub slip_distance_m: f64,
-    /// The object's rotation relative to the fingertips [rad].
+    /// How far the grip has turned by slipping [rad] (the object's rotation less the
+    /// layer's elastic twist).
     pub slip_rotation_rad: f64,
     /// Sub-steps taken.
     pub substeps: usize,
@@ -201,7 +204,7 @@ impl BrushPlant {
         let b = &out.bristles;
         let v = self.object.velocity;
         let moving = v.ux_m != 0.0 || v.uy_m != 0.0 || v.theta_rad != 0.0;
-        let q = self.object.pose;
+        let q = self.contact.slip_pose();
         self.report = PlantReport {
             f_t_n: out.f_t_n,
             m_n_nm: out.m_n_nm,

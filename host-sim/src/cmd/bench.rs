@@ -7,9 +7,10 @@ use crate::bench::sweep::{Sweep, SWEEPS};
 use crate::bench::trial_finger::{BenchPlant, FingerSource};
 use crate::bench::{self, BenchError, BenchLink, BenchOptions};
 use crate::finger_file::FingerFile;
-use crate::sim::controllers::ControllerChoice;
+use crate::sim::controllers::{ControllerChoice, ControllerKind};
 use crate::CliError;
 use clap::Args;
+use softgrip::controller::{ControllerConfig, Mode};
 use std::path::PathBuf;
 
 /// Arguments of `host-sim bench`.
@@ -24,9 +25,9 @@ pub struct BenchArgs {
     /// Seed of the trials.
     #[arg(long, default_value_t = 17)]
     pub seed: u64,
-    /// A controller (softgrip, softgrip-table, constant, coulomb, box, fixed-torsion,
-    /// slip-servo) or all; softgrip-ellipse is softgrip in the default mode, which bench
-    /// runs as `softgrip`.
+    /// A controller (softgrip-ellipse, softgrip-table, constant, coulomb, box,
+    /// fixed-torsion, slip-servo) or all; softgrip is softgrip in the default mode, which
+    /// bench runs as that mode's controller.
     #[arg(long, value_enum, default_value = "all")]
     pub controller: ControllerChoice,
     /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
@@ -86,6 +87,16 @@ fn finger_source(args: &BenchArgs) -> Result<FingerSource, CliError> {
         .map_err(|why| CliError::Usage(format!("--finger: {}: {why}", path.display())))
 }
 
+/// `softgrip` is softgrip in the default configuration's mode, which bench runs as the
+/// controller of that mode; any other kind is itself.
+fn default_mode(kind: ControllerKind) -> ControllerKind {
+    match kind.softgrip_mode(ControllerConfig::DEFAULT.mode) {
+        Some(Mode::Ellipse) => ControllerKind::SoftgripEllipse,
+        Some(Mode::Table) => ControllerKind::SoftgripTable,
+        None => kind,
+    }
+}
+
 /// The families and sweeps an argument list selects.
 pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), CliError> {
     let families: Vec<&'static str> = if args.family == "all" {
@@ -106,7 +117,7 @@ pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), Cl
         ControllerChoice::All => SWEEPS.to_vec(),
         ControllerChoice::One(kind) => vec![*SWEEPS
             .iter()
-            .find(|s| s.controller == kind)
+            .find(|s| s.controller == default_mode(kind))
             .ok_or_else(|| {
                 let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
                 CliError::Usage(format!(

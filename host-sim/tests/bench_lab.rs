@@ -10,6 +10,7 @@ use host_sim::bench::trial_finger::{BenchPlant, FingerSource, TrialFinger};
 use host_sim::experiment::{FingerSpec, Rig};
 use rand::SeedableRng;
 use softgrip::controller::FingerShape;
+use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
 
 #[test]
 fn the_lab_recovers_a_limit_surface_finger_within_its_noise() {
@@ -33,10 +34,30 @@ fn the_lab_recovers_a_limit_surface_finger_within_its_noise() {
             b.cone_mu
         );
         assert!((b.gamma - 0.4).abs() < 0.05, "{shape:?} gamma {}", b.gamma);
-        let a = |n: f64| b.c * n.powf(b.gamma);
-        let want = |n: f64| 2.5e-3 * n.powf(0.4);
-        for n in [0.5, 4.0, 16.0] {
-            assert!((a(n) / want(n) - 1.0).abs() < 0.05, "{shape:?} a({n})");
+        // softgrip's contact law is the one friction sees: its torsion limit
+        // mu*N*a(N)*pitch(k, l/a) is the surface's, within the noise.
+        let pitch = |a: f64| {
+            let shape = match shape {
+                FingerShape::Rect => Shape::Rect { aspect: 0.01 / a },
+                FingerShape::Disc => Shape::Disc,
+            };
+            let order = QuadratureOrder::DEFAULT;
+            let config = FlsConfig {
+                shape,
+                k: b.k,
+                skew: None,
+                order,
+            };
+            FlsModel::<f64>::new(config).unwrap().pitch()
+        };
+        for n in [0.5f64, 4.0, 16.0] {
+            let a = b.c * n.powf(b.gamma);
+            let model = b.mu * n * a * pitch(a);
+            let truth = rig.slip_onset(n, 0.0, 1e-3).unwrap().1;
+            assert!(
+                (model / truth - 1.0).abs() < 0.05,
+                "{shape:?} M({n}) {model} {truth}"
+            );
         }
         // The fixed patch's arm is the surface's torsion arm at some force in the lab's
         // range: between the arms at its least and greatest force.

@@ -7,7 +7,7 @@ use host_sim::bench::lab;
 use host_sim::bench::onset_table::OnsetTable;
 use host_sim::bench::oracle::TrueLimit;
 use host_sim::bench::trial_finger::{BenchPlant, FingerSource, TrialFinger};
-use host_sim::experiment::{FingerSpec, Rig};
+use host_sim::experiment::FingerSpec;
 use rand::SeedableRng;
 use softgrip::controller::FingerShape;
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};

@@ -345,7 +345,8 @@ fn brush_scenes_hold_the_lift_and_drop_the_overload() {
     );
     assert!(!s.dropped && s.slip_events == 0, "{s:?}");
     assert!(out.samples.iter().any(|x| x.ft_n > 1.0));
-    let heavy = Scene::parse(&scene_text("", "", "\"gravity\"", 6.0)).unwrap();
+    let calibrated = "c = 2e-3\ngamma = 0.33\n";
+    let heavy = Scene::parse(&scene_text(calibrated, "", "\"gravity\"", 6.0)).unwrap();
     let out = run_with(
         &heavy,
         "softgrip",
@@ -386,12 +387,12 @@ fn brush_scene_keys_are_checked_by_name() {
     assert!(e.contains("finger.c") && e.contains("fls"), "{e}");
     let e = err(fls.replace("gamma", "c = 2e-3\ngamma") + "[finger.brush]\n");
     assert!(e.contains("finger.brush"), "{e}");
-    // Without c and gamma the brush fits the controller's contact law to itself.
+    // Without c and gamma the finger can be measured but runs no controller: nothing is
+    // read from the plant.
     let s = Scene::parse(&scene_text("", "", "", 0.2)).unwrap();
-    assert!(
-        s.finger.c > 0.0 && (0.25..0.45).contains(&s.finger.gamma),
-        "{} {}",
-        s.finger.c,
-        s.finger.gamma
-    );
+    assert!(s.finger.c.is_nan() && s.finger.gamma.is_nan());
+    let e = host_sim::sim::run::controller_config(&s)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("finger.c") && e.contains("lab data"), "{e}");
 }

@@ -171,7 +171,9 @@ pub fn friction_contact_c(
         sum / torsion.len() as f64
     };
     let (mut lo, mut hi) = (c0.ln() - 3.0, c0.ln() + 3.0);
-    if !(residual(lo) > 0.0) || !(residual(hi) < 0.0) {
+    // A bracket that does not change sign (or a NaN) keeps the indentation's scale.
+    let brackets = residual(lo) > 0.0 && residual(hi) < 0.0;
+    if !brackets {
         return c0;
     }
     for _ in 0..60 {

@@ -7,9 +7,10 @@
 //! required. `model = "brush"` is the physical plant of [`crate::brush`]: its own keys are
 //! in the `[finger.brush]` subtable ([`BrushSettings`]), it shares `shape`, `mu` (its
 //! static μ), `half_length_m`, `young_modulus_pa` and `poisson`; `c`, `gamma` and `k` then
-//! only say what the controller believes, and `c`, `gamma` default to the power law
-//! `a = c·N^γ` through the plant's own quasi-static half-width at the controller's least
-//! and greatest force ([`Finger::fit_brush_contact_law`]).
+//! only say what the controller believes, calibrated from the finger's lab data
+//! (`host-sim experiment`, then `host-sim calibrate`): nothing is read from the plant. A
+//! brush finger without `c` and `gamma` can be measured (`experiment`) but runs no
+//! controller.
 
 use crate::brush::{BrushFinger, BrushParams, BrushSettings, BrushShape};
 use serde::Deserialize;
@@ -114,17 +115,5 @@ impl Finger {
             };
             format!("{table}.{e}")
         })
-    }
-
-    /// The power law `a = c·N^γ` through the brush's quasi-static half-width at `n_lo`
-    /// and `n_hi` [N]: `(c, γ)`, `γ` clamped to `[0, 1/2]`.
-    pub fn fit_brush_contact_law(brush: &BrushFinger, n_lo: f64, n_hi: f64) -> (f64, f64) {
-        let (a_lo, a_hi) = (
-            brush.indentation_half_width_m(n_lo),
-            brush.indentation_half_width_m(n_hi),
-        );
-        let gamma = ((a_hi / a_lo).ln() / (n_hi / n_lo).ln()).clamp(0.0, 0.5);
-        let gamma = if gamma.is_finite() { gamma } else { 0.0 };
-        (a_lo / n_lo.powf(gamma), gamma)
     }
 }

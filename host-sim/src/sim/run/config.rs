@@ -51,6 +51,14 @@ pub fn scene_config(
     s: &ControllerSettings,
     tick_hz: f64,
 ) -> Result<ControllerConfig, SceneError> {
+    if f.model == crate::sim::finger::FingerModel::Brush && (f.c.is_nan() || f.gamma.is_nan()) {
+        return Err(SceneError(
+            "finger.c, finger.gamma: a brush finger runs a controller only with its contact \
+             law as calibrated from the finger's lab data (host-sim experiment, then host-sim \
+             calibrate); nothing is read from the plant"
+                .into(),
+        ));
+    }
     let cfg = crate::config::overlay(&finger_base(f, tick_hz), &s.config)
         .map_err(|e| SceneError(format!("controller.{e}")))?;
     Ok(ControllerConfig {

@@ -247,7 +247,6 @@ impl Scene {
             }
         })?;
         scene.check(text)?;
-        scene.fit_brush_law();
         scene.effect_settings = scene.read_effect_settings(text)?;
         Ok(scene)
     }
@@ -265,7 +264,6 @@ impl Scene {
             self.controller.set("mu", mu);
         }
         self.check("")?;
-        self.fit_brush_law();
         Ok(self)
     }
 
@@ -290,32 +288,13 @@ impl Scene {
         Ok(settings)
     }
 
-    /// Whether the brush plant will fit `c` and `gamma` (a brush finger without them).
-    fn brush_fits_law(&self) -> bool {
+    /// Whether the finger is a brush finger whose controller beliefs `c` and `gamma` are
+    /// not given (the lab has yet to calibrate it: `experiment` can still measure it, but
+    /// no controller can run on it).
+    fn brush_uncalibrated(&self) -> bool {
         self.finger.model == FingerModel::Brush
             && self.finger.c.is_nan()
             && self.finger.gamma.is_nan()
-    }
-
-    /// For a brush finger without `c` and `gamma`: the power law through the plant's own
-    /// half-width at the controller's least and greatest force
-    /// ([`Finger::fit_brush_contact_law`]). Runs after [`Scene::check`].
-    fn fit_brush_law(&mut self) {
-        if !self.brush_fits_law() {
-            return;
-        }
-        let Ok(Some(brush)) = self.finger.brush_finger() else {
-            return;
-        };
-        let d = softgrip::controller::ControllerConfig::default();
-        let lo = self.controller.number("n_min_n").unwrap_or(d.n_min_n);
-        let hi = self.controller.number("n_max_n").unwrap_or(d.n_max_n);
-        let (lo, hi) = if lo > 0.0 && hi > lo && hi.is_finite() {
-            (lo, hi)
-        } else {
-            (d.n_min_n, d.n_max_n)
-        };
-        (self.finger.c, self.finger.gamma) = Finger::fit_brush_contact_law(&brush, lo, hi);
     }
 
     /// The `[finger]` keys that depend on `model`: `c` and `gamma` for `fls` (and no
@@ -349,8 +328,8 @@ impl Scene {
         }
         if f.c.is_nan() != f.gamma.is_nan() {
             return Err(SceneError(format!(
-                "{}finger.c, finger.gamma: give both or neither (model = \"brush\" fits \
-                 both to the plant)",
+                "{}finger.c, finger.gamma: give both (the controller's contact law, \
+                 calibrated from the finger's lab data) or neither (a finger to measure)",
                 at("finger", if f.c.is_nan() { "gamma" } else { "c" })
             )));
         }
@@ -483,7 +462,7 @@ impl Scene {
             let why = format!("{} must be >= 1", short_num(f.k));
             return Err(bad(text, "finger", "k", why));
         }
-        if !(0.0..=0.5).contains(&f.gamma) && !self.brush_fits_law() {
+        if !(0.0..=0.5).contains(&f.gamma) && !self.brush_uncalibrated() {
             let why = format!("{} must lie in [0, 1/2]", short_num(f.gamma));
             return Err(bad(text, "finger", "gamma", why));
         }

@@ -4,6 +4,7 @@
 
 use host_sim::bench::families::{self, Ranges};
 use host_sim::bench::oracle::{least_holding_force_n, mean_oracle_force_n};
+use host_sim::bench::stats;
 use host_sim::bench::sweep::{self, SWEEPS};
 use host_sim::bench::trial_finger::{BenchPlant, FingerSource};
 use host_sim::sim::controllers::LinkKind;
@@ -60,11 +61,11 @@ fn the_same_seed_gives_the_same_rows_and_another_seed_other_trials() {
             4,
             &sweeps,
             &LinkKind::Direct,
-            None,
             &bar,
         )
         .unwrap();
-        serde_json::to_string(&sweep::rows("mu-mismatch", &sweeps, &r)).unwrap()
+        let r: Vec<&sweep::TrialResult> = r.iter().collect();
+        serde_json::to_string(&stats::rows("mu-mismatch", Some(seed), &sweeps, &r)).unwrap()
     };
     let a = rows(7);
     assert_eq!(a, rows(7));
@@ -386,9 +387,9 @@ fn the_command_writes_json_and_both_plots() {
 
 #[test]
 fn the_wilson_interval_brackets_the_rate() {
-    let [lo, hi] = sweep::wilson95(0, 200);
+    let [lo, hi] = stats::wilson95(0, 200);
     assert!(lo < 1e-12);
     assert!((hi - 0.01884).abs() < 1e-4, "{hi}");
-    let [lo, hi] = sweep::wilson95(10, 20);
+    let [lo, hi] = stats::wilson95(10, 20);
     assert!((lo - 0.2993).abs() < 1e-3 && (hi - 0.7007).abs() < 1e-3);
 }

@@ -191,7 +191,7 @@ fn bench_runs_every_trial_on_the_file_s_finger() {
     let rows: Vec<&str> = csv.lines().skip(1).collect();
     assert!(!rows.is_empty());
     for row in rows {
-        let true_mu: f64 = row.split(',').nth(1).unwrap().parse().unwrap();
+        let true_mu: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
         assert_eq!(true_mu, mu, "{row}");
     }
     // The brush finger is a plant of its own, not a bench finger.

@@ -2,15 +2,22 @@
 //! families, against the oracle force; drop rates with Wilson intervals, force over the
 //! oracle, Pareto plots.
 //!
-//! - [`families`]: the trial generators and their ranges;
-//! - [`oracle`]: the least force that holds each tick's true load;
-//! - [`sweep`]: the controllers' knobs, one trial's runs, the summary rows;
-//! - [`report`]: text tables and `bench.json`; [`plot`]: the Pareto plots.
+//! - [`families`]: the trial generators and their ranges; [`trial_finger`]: each trial's
+//!   fingertip; [`lab`]: what every controller is told, from the lab's rows;
+//! - [`oracle`]: the least force that holds each tick's true load ([`onset_table`] on
+//!   the brush finger);
+//! - [`sweep`]: the controllers' knobs and one trial's runs; [`stats`]: the summary rows
+//!   (per seed and pooled);
+//! - [`report`]: text tables, the dominance checks and `bench.json`; [`plot`]: the Pareto
+//!   plots; [`shard`]: a share of the work units, and the merge of shards.
 //!
 //! Trials run in parallel (rayon), each run without per-tick samples (unless asked for
 //! traces), softgrip on the direct in-memory link. [`run`] is the whole bench on plain
 //! options ([`BenchOptions`]); the command `host-sim bench` (`cmd::bench`) parses its
-//! arguments into them.
+//! arguments into them. A run computes every work unit's [`TrialResult`] (a unit is one
+//! trial of one family under one seed), then writes its files from those alone
+//! ([`write_outputs`]): so a merge of shards, which has the same results, writes the same
+//! bytes.
 
 pub mod families;
 pub mod lab;
@@ -18,6 +25,8 @@ pub mod onset_table;
 pub mod oracle;
 pub mod plot;
 pub mod report;
+pub mod shard;
+pub mod stats;
 pub mod sweep;
 pub mod trial_finger;
 
@@ -29,9 +38,10 @@ use crate::sim::run::{self as sim_run, RunOptions};
 use families::Ranges;
 use indicatif::ProgressBar;
 use rayon::prelude::*;
+use stats::Row;
 use std::fmt;
-use std::path::{Path, PathBuf};
-use sweep::{Row, Sweep, TrialResult};
+use std::path::PathBuf;
+use sweep::{Sweep, TrialResult};
 use trial_finger::FingerSource;
 
 /// Trials per family that a pty check ([`BenchLink::Pty`]) also runs over the pty and
@@ -69,10 +79,12 @@ pub struct BenchOptions {
     pub source: FingerSource,
     /// The families' ranges and what the controllers are told.
     pub ranges: Ranges,
-    /// Trials per family (at least 1).
+    /// Trials per family and seed (at least 1).
     pub trials: usize,
-    /// Seed of the trials.
-    pub seed: u64,
+    /// The seeds of the trials, pooled (at least one, each once).
+    pub seeds: Vec<u64>,
+    /// Run only this share of the work units and write it as a shard file.
+    pub shard: Option<shard::Shard>,
     /// softgrip's link.
     pub link: BenchLink,
     /// Output directory: `bench.json`, `trials-FAMILY.csv`, `pareto-FAMILY.svg/.png`,
@@ -134,122 +146,173 @@ pub fn finger_from_file(file: &FingerFile) -> Result<FingerSpec, String> {
     .map(|_| spec)
 }
 
-/// Runs the bench `opts` describes and writes its files. `show` gets what the terminal
-/// shows, as it comes, the progress bar out of the way: each family's table and
-/// dominance line as the family finishes, and the pty check's outcome.
+/// The trials of one family under one seed, in index order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyResults {
+    /// The family.
+    pub family: &'static str,
+    /// The seed.
+    pub seed: u64,
+    /// Trial `i`'s result at index `i`.
+    pub results: Vec<TrialResult>,
+}
+
+/// Runs the bench `opts` describes and writes its files (or, with a shard, its shard
+/// file). `show` gets what the terminal shows: each family's table and dominance lines,
+/// and the pty check's outcome.
 pub fn run(opts: &BenchOptions, mut show: impl FnMut(&str)) -> Result<(), BenchError> {
-    let write_err =
-        |p: &Path, e: std::io::Error| BenchError::Write(format!("{}: {e}", p.display()));
-    std::fs::create_dir_all(&opts.out).map_err(|e| write_err(&opts.out, e))?;
-    let total = (opts.trials * opts.families.len()) as u64;
-    let bar = crate::progress::bar(total, "trials", opts.quiet);
-    let mut all: Vec<Row> = Vec::new();
-    let mut dominance = Vec::new();
-    for family in &opts.families {
-        bar.set_message(family.to_string());
-        let rows = bench_family(opts, family, &bar)?;
-        let check = report::dominance(family, &rows);
-        let text = format!(
-            "{}\n{}\n\n",
-            report::family_table(family, &rows),
-            report::dominance_line(&check)
-        );
-        bar.suspend(|| show(&text));
-        dominance.push(check);
-        plot::write_pareto(&opts.out, family, &rows).map_err(BenchError::Run)?;
-        all.extend(rows);
-    }
+    std::fs::create_dir_all(&opts.out)
+        .map_err(|e| BenchError::Write(format!("{}: {e}", opts.out.display())))?;
+    let units = shard::units(opts);
+    let mine: Vec<shard::Unit> = match opts.shard {
+        Some(s) => units.into_iter().filter(|u| s.takes(u.number)).collect(),
+        None => units,
+    };
+    let bar = crate::progress::bar(mine.len() as u64, "trials", opts.quiet);
+    let done = run_units(opts, &mine, &bar)?;
     bar.finish_and_clear();
     if opts.link == BenchLink::Pty {
         show(&format!(
-            "pty check: the first {PTY_SAMPLE} trials of each family gave identical results \
-             over the pty and the direct link (softgrip, both modes)\n"
+            "pty check: the first {PTY_SAMPLE} trials of each family and seed gave identical \
+             results over the pty and the direct link (softgrip, both modes)\n"
         ));
     }
-    report::write_json(
-        &opts.out.join("bench.json"),
-        opts.seed,
-        opts.trials,
-        opts.link.name(),
-        &all,
-        &dominance,
-    )
-    .map_err(|e| BenchError::Write(e.to_string()))
-}
-
-/// The trials of one family: run (and traced, and checked over the pty, as `opts` asks),
-/// written to `trials-FAMILY.csv`, and summed up in the summary rows.
-fn bench_family(
-    opts: &BenchOptions,
-    family: &str,
-    bar: &ProgressBar,
-) -> Result<Vec<Row>, BenchError> {
-    let trace = if opts.trace {
-        let dir = opts.out.join("trace").join(family);
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| BenchError::Write(format!("{}: {e}", dir.display())))?;
-        Some(dir)
-    } else {
-        None
-    };
-    let results = run_family(
-        &opts.source,
-        &opts.ranges,
-        family,
-        opts.seed,
-        opts.trials,
-        &opts.sweeps,
-        &LinkKind::Direct,
-        trace.as_deref(),
-        bar,
-    )
-    .map_err(BenchError::Run)?;
-    if opts.link == BenchLink::Pty {
-        check_pty(&opts.source, &opts.ranges, family, opts.seed).map_err(BenchError::Run)?;
+    match opts.shard {
+        Some(s) => {
+            let path = shard::write(opts, s, &mine, &done)?;
+            show(&format!(
+                "wrote shard {} ({} trials)\n",
+                path.display(),
+                mine.len()
+            ));
+            Ok(())
+        }
+        None => write_outputs(opts, &group(opts, &mine, done), show),
     }
-    report::write_trials_csv(
-        &opts.out.join(format!("trials-{family}.csv")),
-        &opts.sweeps,
-        &results,
-    )
-    .map_err(|e| BenchError::Write(e.to_string()))?;
-    Ok(sweep::rows(family, &opts.sweeps, &results))
 }
 
-/// Runs the trials `0..trials` of `family`, in parallel, in index order: each is drawn
-/// (its finger measured and every controller calibrated) and run against every sweep.
-#[allow(clippy::too_many_arguments)]
-pub fn run_family(
-    source: &FingerSource,
-    ranges: &Ranges,
-    family: &str,
-    seed: u64,
-    trials: usize,
-    sweeps: &[Sweep],
-    link: &LinkKind,
-    trace: Option<&Path>,
-    bar: &ProgressBar,
-) -> Result<Vec<TrialResult>, String> {
-    (0..trials)
-        .into_par_iter()
-        .map(|i| {
-            let t = families::trial_on(source, ranges, family, seed, i)?;
-            let r = sweep::run_trial(&t, sweeps, link, trace);
-            bar.inc(1);
-            r
+/// The trace directory of each family of `opts` (`None`s without `--trace`).
+fn trace_dirs(opts: &BenchOptions) -> Result<Vec<Option<PathBuf>>, BenchError> {
+    opts.families
+        .iter()
+        .map(|family| {
+            if !opts.trace {
+                return Ok(None);
+            }
+            let dir = opts.out.join("trace").join(family);
+            std::fs::create_dir_all(&dir)
+                .map_err(|e| BenchError::Write(format!("{}: {e}", dir.display())))?;
+            Ok(Some(dir))
         })
         .collect()
 }
 
-/// Runs the first [`PTY_SAMPLE`] trials of `family` with softgrip (both modes, default
-/// knob) over the pty and over the direct link, and checks that the summaries agree.
+/// Runs `units` (in parallel) and returns their results in the same order; with a pty
+/// link, also checks the first [`PTY_SAMPLE`] trials of each family and seed among them.
+fn run_units(
+    opts: &BenchOptions,
+    units: &[shard::Unit],
+    bar: &ProgressBar,
+) -> Result<Vec<TrialResult>, BenchError> {
+    let dirs = trace_dirs(opts)?;
+    let results = units
+        .par_iter()
+        .map(|u| {
+            let fam = opts.families.iter().position(|f| *f == u.family);
+            let dir = fam.and_then(|i| dirs[i].as_deref());
+            let t = families::trial_on(&opts.source, &opts.ranges, u.family, u.seed, u.index)?;
+            let r = sweep::run_trial(&t, &opts.sweeps, &LinkKind::Direct, dir);
+            bar.inc(1);
+            r
+        })
+        .collect::<Result<Vec<_>, String>>()
+        .map_err(BenchError::Run)?;
+    if opts.link == BenchLink::Pty {
+        for u in units.iter().filter(|u| u.index < PTY_SAMPLE) {
+            check_pty(&opts.source, &opts.ranges, u.family, u.seed, u.index)
+                .map_err(BenchError::Run)?;
+        }
+    }
+    Ok(results)
+}
+
+/// The results of `units` grouped by family and seed, in `opts`' order of both.
+pub fn group(
+    opts: &BenchOptions,
+    units: &[shard::Unit],
+    results: Vec<TrialResult>,
+) -> Vec<FamilyResults> {
+    let mut out: Vec<FamilyResults> = Vec::new();
+    for (u, r) in units.iter().zip(results) {
+        match out
+            .iter_mut()
+            .find(|g| g.family == u.family && g.seed == u.seed)
+        {
+            Some(g) => g.results.push(r),
+            None => out.push(FamilyResults {
+                family: u.family,
+                seed: u.seed,
+                results: vec![r],
+            }),
+        }
+    }
+    out.sort_by_key(|g| {
+        let f = opts.families.iter().position(|x| *x == g.family);
+        let s = opts.seeds.iter().position(|x| *x == g.seed);
+        (f, s)
+    });
+    out
+}
+
+/// Writes a bench's files from its results: per family the pooled table and the
+/// dominance lines (shown), `trials-FAMILY.csv` and the Pareto plots; then `bench.json`
+/// with the pooled and the per-seed rows.
+pub fn write_outputs(
+    opts: &BenchOptions,
+    groups: &[FamilyResults],
+    mut show: impl FnMut(&str),
+) -> Result<(), BenchError> {
+    let (mut pooled, mut per_seed, mut checks) = (Vec::new(), Vec::new(), Vec::new());
+    for family in &opts.families {
+        let mine: Vec<&FamilyResults> = groups.iter().filter(|g| g.family == *family).collect();
+        let all: Vec<&TrialResult> = mine.iter().flat_map(|g| g.results.iter()).collect();
+        let rows: Vec<Row> = stats::rows(family, None, &opts.sweeps, &all);
+        for g in &mine {
+            let results: Vec<&TrialResult> = g.results.iter().collect();
+            per_seed.extend(stats::rows(family, Some(g.seed), &opts.sweeps, &results));
+        }
+        let check = report::dominance(family, &rows, report::DOMINANCE_MAX_DROP_RATE);
+        show(&format!(
+            "{}\n{}\n",
+            report::family_table(family, &rows),
+            report::dominance_lines(&check)
+        ));
+        let by_seed: Vec<(u64, &[TrialResult])> = mine
+            .iter()
+            .map(|g| (g.seed, g.results.as_slice()))
+            .collect();
+        let csv = opts.out.join(format!("trials-{family}.csv"));
+        report::write_trials_csv(&csv, &opts.sweeps, &by_seed)
+            .map_err(|e| BenchError::Write(format!("{}: {e}", csv.display())))?;
+        plot::write_pareto(&opts.out, family, &rows).map_err(BenchError::Run)?;
+        checks.push(check);
+        pooled.extend(rows);
+    }
+    let json = opts.out.join("bench.json");
+    report::write_json(&json, &shard::Key::of(opts), &pooled, &per_seed, &checks)
+        .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))
+}
+
+/// Runs trial `i` of `family` under `seed` with softgrip (both modes, default knob) over
+/// the pty and over the direct link, and checks that the summaries agree.
 fn check_pty(
     source: &FingerSource,
     ranges: &Ranges,
     family: &str,
     seed: u64,
+    i: usize,
 ) -> Result<(), String> {
-    for i in 0..PTY_SAMPLE {
+    {
         let t = families::trial_on(source, ranges, family, seed, i)?;
         for c in [
             ControllerKind::SoftgripEllipse,
@@ -278,4 +341,29 @@ fn check_pty(
         }
     }
     Ok(())
+}
+
+/// Runs the trials `0..trials` of `family` under `seed`, in parallel, in index order:
+/// each is drawn (its finger measured and every controller calibrated) and run against
+/// every sweep.
+#[allow(clippy::too_many_arguments)]
+pub fn run_family(
+    source: &FingerSource,
+    ranges: &Ranges,
+    family: &str,
+    seed: u64,
+    trials: usize,
+    sweeps: &[Sweep],
+    link: &LinkKind,
+    bar: &ProgressBar,
+) -> Result<Vec<TrialResult>, String> {
+    (0..trials)
+        .into_par_iter()
+        .map(|i| {
+            let t = families::trial_on(source, ranges, family, seed, i)?;
+            let r = sweep::run_trial(&t, sweeps, link, None);
+            bar.inc(1);
+            r
+        })
+        .collect()
 }

@@ -2,7 +2,7 @@
 //! [-], one curve per controller through its knob values, its default ringed. Written as
 //! SVG (plotters) and as PNG (that SVG rasterised by resvg with a system font).
 
-use super::sweep::Row;
+use super::stats::Row;
 use crate::sim::controllers::ControllerKind;
 use crate::sim::report::RUN_COLOURS;
 use plotters::prelude::*;

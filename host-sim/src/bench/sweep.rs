@@ -1,5 +1,5 @@
-//! Each controller swept over its own knob, on every trial of a family, and the rows of
-//! the summary: drops (with a Wilson 95 % interval), force over the oracle, slip.
+//! Each controller swept over its own knob, on every trial of a family: the grids, and
+//! one trial's runs ([`run_trial`]). The rows of the summary are [`super::stats`]'.
 
 use super::families::Trial;
 use super::oracle;
@@ -7,7 +7,7 @@ use crate::sim::controllers::{ControllerKind, LinkKind};
 use crate::sim::report;
 use crate::sim::run::{self, RunOptions};
 use crate::sim::scene::Scene;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use softgrip::controller::ControllerConfig;
 use std::path::Path;
 
@@ -87,7 +87,7 @@ pub fn with_knob(scene: &Scene, controller: ControllerKind, value: f64) -> Scene
 }
 
 /// One run of one trial.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
     /// Dropped ([`run::is_drop`]).
     pub dropped: bool,
@@ -101,8 +101,9 @@ pub struct RunRow {
     pub peak_force_n: f64,
 }
 
-/// One trial against every controller and knob value.
-#[derive(Debug, Clone, PartialEq)]
+/// One trial against every controller and knob value (a shard file's unit of work:
+/// serialised whole).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TrialResult {
     /// The finger's true static μ [-].
     pub true_mu: f64,
@@ -181,103 +182,4 @@ pub fn run_trial(
         oracle_mean_n,
         runs,
     })
-}
-
-/// One row of `bench.json`: one family, controller and knob value over all trials.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Row {
-    /// Family.
-    pub family: String,
-    /// Controller.
-    pub controller: String,
-    /// The knob's name.
-    pub knob: String,
-    /// The knob's value (safety factor [-], force [N] or floor force [N]).
-    pub knob_value: f64,
-    /// Whether this is the controller's default.
-    pub default: bool,
-    /// Trials run.
-    pub trials: usize,
-    /// Trials that `constant` at `N_max` holds.
-    pub holdable: usize,
-    /// Trials dropped.
-    pub drops: usize,
-    /// Holdable trials dropped.
-    pub drops_holdable: usize,
-    /// `drops/trials`.
-    pub drop_rate: f64,
-    /// Wilson score 95 % interval of the drop rate, `[low, high]`.
-    pub drop_rate_ci95: [f64; 2],
-    /// Mean over trials of (time-averaged force / oracle's time-averaged force) [-].
-    pub force_over_oracle: f64,
-    /// Mean over trials of the time-averaged normal force [N].
-    pub mean_force_n: f64,
-    /// Mean over trials of the peak normal force [N].
-    pub peak_force_n: f64,
-    /// Mean over trials of the slip distance [m].
-    pub slip_distance_m: f64,
-    /// Mean over trials of the slip episodes.
-    pub slip_events: f64,
-}
-
-/// The Wilson score interval at 95 % for `k` successes in `n` trials.
-pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
-    if n == 0 {
-        return [0.0, 1.0];
-    }
-    let z = 1.959_963_984_540_054_f64;
-    let (n, p) = (n as f64, k as f64 / n as f64);
-    let denom = 1.0 + z * z / n;
-    let centre = (p + z * z / (2.0 * n)) / denom;
-    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denom;
-    [(centre - half).max(0.0), (centre + half).min(1.0)]
-}
-
-/// The rows of one family from its trials' results, in [`SWEEPS`] order.
-pub fn rows(family: &str, sweeps: &[Sweep], results: &[TrialResult]) -> Vec<Row> {
-    let mut out = Vec::new();
-    let mut col = 0;
-    let n = results.len();
-    let holdable = results.iter().filter(|r| r.holdable).count();
-    for sw in sweeps {
-        for &v in sw.values {
-            let (mut drops, mut drops_h) = (0, 0);
-            let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for r in results {
-                let run = &r.runs[col];
-                if run.dropped {
-                    drops += 1;
-                    if r.holdable {
-                        drops_h += 1;
-                    }
-                }
-                ratio += run.mean_force_n / r.oracle_mean_n;
-                force += run.mean_force_n;
-                peak += run.peak_force_n;
-                slip += run.slip_distance_m;
-                events += run.slip_events as f64;
-            }
-            let mean = |x: f64| if n > 0 { x / n as f64 } else { 0.0 };
-            out.push(Row {
-                family: family.to_string(),
-                controller: sw.controller.name().to_string(),
-                knob: sw.knob.to_string(),
-                knob_value: v,
-                default: v == sw.default,
-                trials: n,
-                holdable,
-                drops,
-                drops_holdable: drops_h,
-                drop_rate: mean(drops as f64),
-                drop_rate_ci95: wilson95(drops, n),
-                force_over_oracle: mean(ratio),
-                mean_force_n: mean(force),
-                peak_force_n: mean(peak),
-                slip_distance_m: mean(slip),
-                slip_events: mean(events),
-            });
-            col += 1;
-        }
-    }
-    out
 }

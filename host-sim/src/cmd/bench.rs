@@ -15,21 +15,31 @@ use std::path::PathBuf;
 
 /// Arguments of `host-sim bench`.
 #[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct BenchArgs {
-    /// A family (lift-hold, shake, twist, mu-mismatch, faults) or all.
-    #[arg(long, default_value = "all")]
-    pub family: String,
-    /// Trials per family.
-    #[arg(long, default_value_t = 200)]
+    /// `bench merge`: the files of a run's shards into the run's outputs.
+    #[command(subcommand)]
+    pub merge: Option<MergeCommand>,
+    /// Families (lift-hold, shake, twist, mu-mismatch, faults), comma-separated, or all.
+    #[arg(long, value_delimiter = ',', default_value = "all")]
+    pub family: Vec<String>,
+    /// Trials per family and seed.
+    #[arg(long, default_value_t = DEFAULT_TRIALS)]
     pub trials: usize,
-    /// Seed of the trials.
-    #[arg(long, default_value_t = 17)]
-    pub seed: u64,
-    /// A controller (softgrip-ellipse, softgrip-table, constant, coulomb, box,
-    /// fixed-torsion, slip-servo) or all; softgrip is softgrip in the default mode, which
-    /// bench runs as that mode's controller.
-    #[arg(long, value_enum, default_value = "all")]
-    pub controller: ControllerChoice,
+    /// Seeds of the trials, comma-separated: the trials of every seed are pooled, and
+    /// bench.json keeps each seed's rows beside the pooled ones (alias --seed).
+    #[arg(long, alias = "seed", value_delimiter = ',', default_value = "17")]
+    pub seeds: Vec<u64>,
+    /// Run only this share I/N of the work (a unit is one trial of one family under one
+    /// seed; shard I takes the units numbered I modulo N) and write
+    /// OUT/shard-I-of-N.json; `bench merge` turns the shards into the run's outputs.
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Controllers (softgrip-ellipse, softgrip-table, constant, coulomb, box,
+    /// fixed-torsion, slip-servo), comma-separated, or all; softgrip is softgrip in the
+    /// default mode, which bench runs as that mode's controller.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "all")]
+    pub controller: Vec<ControllerChoice>,
     /// Output directory (bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png, trace/).
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
@@ -63,6 +73,29 @@ pub struct BenchArgs {
     #[arg(long)]
     pub finger: Option<PathBuf>,
 }
+
+/// `bench`'s subcommand.
+#[derive(Debug, clap::Subcommand)]
+pub enum MergeCommand {
+    /// Merges the shard files of one run (`bench --shard I/N`) into the files the whole
+    /// run writes, bit for bit: bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png.
+    Merge(MergeArgs),
+}
+
+/// Arguments of `host-sim bench merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Output directory.
+    #[arg(long, default_value = "bench-out")]
+    pub out: PathBuf,
+    /// The shard files (shard-I-of-N.json), every shard of the run once.
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
+}
+
+/// Trials per family and seed of the default run: sized to finish in 3 minutes on 2
+/// cores (docs/bench.md gives the measured time).
+pub const DEFAULT_TRIALS: usize = 12;
 
 /// `--plant`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -99,34 +132,44 @@ fn default_mode(kind: ControllerKind) -> ControllerKind {
 
 /// The families and sweeps an argument list selects.
 pub fn selection(args: &BenchArgs) -> Result<(Vec<&'static str>, Vec<Sweep>), CliError> {
-    let families: Vec<&'static str> = if args.family == "all" {
-        families::NAMES.to_vec()
-    } else {
-        vec![*families::NAMES
-            .iter()
-            .find(|n| **n == args.family)
-            .ok_or_else(|| {
+    let mut families: Vec<&'static str> = Vec::new();
+    for name in &args.family {
+        let add: Vec<&'static str> = if name == "all" {
+            families::NAMES.to_vec()
+        } else {
+            vec![*families::NAMES.iter().find(|n| *n == name).ok_or_else(|| {
                 CliError::Usage(format!(
-                    "--family: unknown family \"{}\", expected all or one of {}",
-                    args.family,
+                    "--family: unknown family \"{name}\", expected all or one of {}",
                     families::NAMES.join(", ")
                 ))
             })?]
-    };
-    let sweeps: Vec<Sweep> = match args.controller {
-        ControllerChoice::All => SWEEPS.to_vec(),
-        ControllerChoice::One(kind) => vec![*SWEEPS
-            .iter()
-            .find(|s| s.controller == default_mode(kind))
-            .ok_or_else(|| {
-                let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
-                CliError::Usage(format!(
-                    "--controller: bench has no sweep of \"{}\", expected all or one of {}",
-                    kind.name(),
-                    names.join(", ")
-                ))
-            })?],
-    };
+        };
+        for f in add {
+            if !families.contains(&f) {
+                families.push(f);
+            }
+        }
+    }
+    if args.controller.contains(&ControllerChoice::All) {
+        return Ok((families, SWEEPS.to_vec()));
+    }
+    let mut sweeps: Vec<Sweep> = Vec::new();
+    for k in ControllerChoice::kinds(&args.controller)
+        .into_iter()
+        .map(default_mode)
+    {
+        let sweep = SWEEPS.iter().find(|s| s.controller == k).ok_or_else(|| {
+            let names: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
+            CliError::Usage(format!(
+                "--controller: bench has no sweep of \"{}\", expected all or one of {}",
+                k.name(),
+                names.join(", ")
+            ))
+        })?;
+        if !sweeps.iter().any(|s| s.controller == k) {
+            sweeps.push(*sweep);
+        }
+    }
     Ok((families, sweeps))
 }
 
@@ -137,6 +180,19 @@ pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
     if args.trials == 0 {
         return Err(CliError::Usage("--trials: must be at least 1".into()));
     }
+    let seeds = args.seeds.clone();
+    let distinct: std::collections::BTreeSet<u64> = seeds.iter().copied().collect();
+    if seeds.is_empty() || distinct.len() != seeds.len() {
+        return Err(CliError::Usage(
+            "--seeds: give one or more seeds, each once".into(),
+        ));
+    }
+    let shard = args
+        .shard
+        .as_deref()
+        .map(bench::shard::Shard::parse)
+        .transpose()
+        .map_err(|e| CliError::Usage(format!("--shard: {e}")))?;
     let link = match args.link {
         LinkName::Direct => BenchLink::Direct,
         LinkName::Pty => BenchLink::Pty,
@@ -157,7 +213,8 @@ pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
             tell_actuator: args.tell_actuator,
         },
         trials: args.trials,
-        seed: args.seed,
+        seeds,
+        shard,
         link,
         out: args.out.clone(),
         trace: args.trace,
@@ -165,13 +222,37 @@ pub fn options(args: &BenchArgs) -> Result<BenchOptions, CliError> {
     })
 }
 
-/// `host-sim bench`.
-pub fn run(args: &BenchArgs) -> Result<(), CliError> {
-    let opts = options(args)?;
-    bench::run(&opts, |text| print!("{text}")).map_err(|e| match e {
+fn failed(e: BenchError) -> CliError {
+    match e {
         BenchError::Write(e) => CliError::Failed(format!("--out: {e}")),
         BenchError::Run(e) => CliError::Failed(e),
-    })?;
-    println!("wrote {}", args.out.display());
+    }
+}
+
+/// `host-sim bench` (and `bench merge`).
+pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    if let Some(MergeCommand::Merge(m)) = &args.merge {
+        return merge(m);
+    }
+    let opts = options(args)?;
+    let start = std::time::Instant::now();
+    bench::run(&opts, |text| print!("{text}")).map_err(failed)?;
+    println!(
+        "wrote {} ({:.0} s wall)",
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// `host-sim bench merge`.
+fn merge(m: &MergeArgs) -> Result<(), CliError> {
+    let (opts, results) = bench::shard::merge(&m.shards, &m.out).map_err(CliError::Failed)?;
+    std::fs::create_dir_all(&m.out)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", m.out.display())))?;
+    let units = bench::shard::units(&opts);
+    let groups = bench::group(&opts, &units, results);
+    bench::write_outputs(&opts, &groups, |text| print!("{text}")).map_err(failed)?;
+    println!("wrote {}", m.out.display());
     Ok(())
 }

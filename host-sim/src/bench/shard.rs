@@ -1,0 +1,323 @@
+//! A share of a bench's work, and the merge of shares: so that a job runner (a Slurm
+//! array, or any other) can spread a large sweep over machines.
+//!
+//! A work unit is one trial of one family under one seed, numbered in a fixed order:
+//! families (in the run's order), then seeds, then the trial's index. `--shard I/N` runs
+//! the units whose number is `I` modulo `N` and writes `OUT/shard-I-of-N.json`: the
+//! [`Key`] (every option that changes a result) and each unit's [`TrialResult`], whole.
+//! `bench merge` reads the shards of one run, checks that they share a key and cover
+//! every unit exactly once, and writes the files a single run writes, from the same
+//! results: bit for bit the same (`host-sim/tests/bench_shards.rs`). Floats round-trip
+//! exactly through the JSON (serde_json's `float_roundtrip`).
+
+use super::families::Ranges;
+use super::sweep::{Sweep, TrialResult, SWEEPS};
+use super::trial_finger::FingerSource;
+use super::{BenchError, BenchLink, BenchOptions};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Shard `index` of `count` (`index < count`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard's number, from 0.
+    pub index: usize,
+    /// How many shards share the run.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `I/N` (`0 ≤ I < N`).
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let bad = || format!("\"{text}\" is not I/N with 0 <= I < N (e.g. 0/4)");
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let index: usize = i.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether work unit `number` is this shard's.
+    pub fn takes(&self, number: usize) -> bool {
+        number % self.count == self.index
+    }
+}
+
+/// One work unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Unit {
+    /// Its number in the run's fixed order.
+    pub number: usize,
+    /// The family.
+    pub family: &'static str,
+    /// The seed.
+    pub seed: u64,
+    /// The trial's index.
+    pub index: usize,
+}
+
+/// Every unit of a run, in order: families, then seeds, then trial index.
+pub fn units(opts: &BenchOptions) -> Vec<Unit> {
+    let mut out = Vec::new();
+    for family in &opts.families {
+        for &seed in &opts.seeds {
+            for index in 0..opts.trials {
+                out.push(Unit {
+                    number: out.len(),
+                    family,
+                    seed,
+                    index,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// One controller's sweep as a key records it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepKey {
+    /// The controller's name.
+    pub controller: String,
+    /// The knob's values.
+    pub values: Vec<f64>,
+    /// The default value.
+    pub default: f64,
+}
+
+/// Every option that changes a bench's results, as `bench.json` and the shard files
+/// record it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Key {
+    /// `brush` or `fls`.
+    pub plant: String,
+    /// The finger of `--finger`, if one (its fields, as the limit-surface finger).
+    pub finger: Option<[f64; 6]>,
+    /// `--hard`.
+    pub hard: bool,
+    /// `--tell-actuator`.
+    pub tell_actuator: bool,
+    /// The seeds, pooled.
+    pub seeds: Vec<u64>,
+    /// Trials per family and seed.
+    pub trials: usize,
+    /// The families.
+    pub families: Vec<String>,
+    /// The controllers and their grids.
+    pub sweeps: Vec<SweepKey>,
+    /// softgrip's link (`direct` or `pty`).
+    pub link: String,
+}
+
+impl Key {
+    /// The key of `opts`.
+    pub fn of(opts: &BenchOptions) -> Self {
+        Self {
+            plant: opts.source.plant().name().to_string(),
+            finger: match opts.source {
+                FingerSource::Fixed(s) => Some([
+                    match s.shape {
+                        softgrip::controller::FingerShape::Rect => 0.0,
+                        softgrip::controller::FingerShape::Disc => 1.0,
+                    },
+                    s.mu,
+                    s.k,
+                    s.c,
+                    s.gamma,
+                    s.half_length_m,
+                ]),
+                FingerSource::Drawn(_) => None,
+            },
+            hard: opts.ranges.hard,
+            tell_actuator: opts.ranges.tell_actuator,
+            seeds: opts.seeds.clone(),
+            trials: opts.trials,
+            families: opts.families.iter().map(|f| f.to_string()).collect(),
+            sweeps: opts
+                .sweeps
+                .iter()
+                .map(|s| SweepKey {
+                    controller: s.controller.name().to_string(),
+                    values: s.values.to_vec(),
+                    default: s.default,
+                })
+                .collect(),
+            link: opts.link.name().to_string(),
+        }
+    }
+}
+
+/// One unit's result in a shard file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct UnitResult {
+    family: String,
+    seed: u64,
+    index: usize,
+    result: TrialResult,
+}
+
+/// A shard file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct ShardFile {
+    key: Key,
+    shard: [usize; 2],
+    units: Vec<UnitResult>,
+}
+
+/// Writes shard `s`'s file, `OUT/shard-I-of-N.json`, with the results of `units`.
+pub fn write(
+    opts: &BenchOptions,
+    s: Shard,
+    units: &[Unit],
+    results: &[TrialResult],
+) -> Result<PathBuf, BenchError> {
+    let file = ShardFile {
+        key: Key::of(opts),
+        shard: [s.index, s.count],
+        units: units
+            .iter()
+            .zip(results)
+            .map(|(u, r)| UnitResult {
+                family: u.family.to_string(),
+                seed: u.seed,
+                index: u.index,
+                result: r.clone(),
+            })
+            .collect(),
+    };
+    let path = opts
+        .out
+        .join(format!("shard-{}-of-{}.json", s.index, s.count));
+    let text = serde_json::to_string(&file).map_err(|e| BenchError::Run(e.to_string()))?;
+    std::fs::write(&path, text + "\n")
+        .map_err(|e| BenchError::Write(format!("{}: {e}", path.display())))?;
+    Ok(path)
+}
+
+/// The options a key describes (the plant's source, the families and sweeps by name),
+/// writing to `out`; or what in the key this build does not know.
+fn options_of(key: &Key, out: &Path) -> Result<BenchOptions, String> {
+    let families = key
+        .families
+        .iter()
+        .map(|f| {
+            super::families::NAMES
+                .into_iter()
+                .find(|n| n == f)
+                .ok_or_else(|| format!("unknown family \"{f}\""))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let sweeps = key
+        .sweeps
+        .iter()
+        .map(|k| {
+            SWEEPS
+                .iter()
+                .find(|s| s.controller.name() == k.controller && s.values == k.values.as_slice())
+                .copied()
+                .ok_or_else(|| format!("no sweep of {} with those values", k.controller))
+        })
+        .collect::<Result<Vec<Sweep>, _>>()?;
+    let source = match (key.plant.as_str(), key.finger) {
+        (_, Some([shape, mu, k, c, gamma, l])) => {
+            FingerSource::Fixed(crate::experiment::FingerSpec {
+                shape: if shape == 0.0 {
+                    softgrip::controller::FingerShape::Rect
+                } else {
+                    softgrip::controller::FingerShape::Disc
+                },
+                mu,
+                k,
+                c,
+                gamma,
+                half_length_m: l,
+                skew: None,
+            })
+        }
+        ("brush", None) => FingerSource::Drawn(super::trial_finger::BenchPlant::Brush),
+        ("fls", None) => FingerSource::Drawn(super::trial_finger::BenchPlant::Fls),
+        (p, None) => return Err(format!("unknown plant \"{p}\"")),
+    };
+    Ok(BenchOptions {
+        families,
+        sweeps,
+        source,
+        ranges: Ranges {
+            hard: key.hard,
+            tell_actuator: key.tell_actuator,
+        },
+        trials: key.trials,
+        seeds: key.seeds.clone(),
+        shard: None,
+        link: if key.link == "pty" {
+            BenchLink::Pty
+        } else {
+            BenchLink::Direct
+        },
+        out: out.to_path_buf(),
+        trace: false,
+        quiet: true,
+    })
+}
+
+/// Reads the shard files `paths` of one run and returns its options (writing to `out`)
+/// and every unit's result in the run's order; or what is wrong with them: a file that
+/// cannot be read, keys that differ, a unit missing, or one given twice.
+pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
+    let mut key: Option<(Key, &Path)> = None;
+    let mut got: BTreeMap<(String, u64, usize), TrialResult> = BTreeMap::new();
+    for path in paths {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let file: ShardFile =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        match &key {
+            Some((k, first)) if *k != file.key => {
+                return Err(format!(
+                    "{} and {} are shards of different runs (their options differ)",
+                    first.display(),
+                    path.display()
+                ))
+            }
+            Some(_) => {}
+            None => key = Some((file.key.clone(), path)),
+        }
+        for u in file.units {
+            let id = (u.family.clone(), u.seed, u.index);
+            if got.insert(id, u.result).is_some() {
+                return Err(format!(
+                    "{}: {} trial {} of seed {} is in more than one shard",
+                    path.display(),
+                    u.family,
+                    u.index,
+                    u.seed
+                ));
+            }
+        }
+    }
+    let (key, _) = key.ok_or("no shard files given")?;
+    let opts = options_of(&key, out)?;
+    let mut results = Vec::new();
+    for u in units(&opts) {
+        let id = (u.family.to_string(), u.seed, u.index);
+        let r = got.remove(&id).ok_or_else(|| {
+            format!(
+                "{} trial {} of seed {} is in no shard (unit {} of {})",
+                u.family,
+                u.index,
+                u.seed,
+                u.number,
+                opts.trials * opts.seeds.len() * opts.families.len()
+            )
+        })?;
+        results.push(r);
+    }
+    if let Some(((f, s, i), _)) = got.into_iter().next() {
+        return Err(format!(
+            "{f} trial {i} of seed {s} is not a unit of this run"
+        ));
+    }
+    Ok((opts, results))
+}

@@ -3,11 +3,12 @@
 //! ([`controller::blob`](crate::controller::blob)). Its own module so that the controller
 //! and the protocol, which both use it, do not depend on each other for it.
 
-use crc::Crc;
+use crc::{Crc, NoTable};
 
 /// CRC-32/ISCSI (Castagnoli; poly `0x1EDC6F41`, reflected, init and xorout `0xFFFFFFFF`,
 /// check value `0xE3069283`).
 ///
-/// A `static` so its 1 KiB lookup table exists once in flash instead of being rebuilt on
-/// the stack at each use.
-pub static CRC: Crc<u32> = Crc::<u32>::new(&crc::CRC_32_ISCSI);
+/// Bitwise (`NoTable`): eight shift-and-xor steps per byte instead of a lookup in a 1 KiB
+/// table, which the firmware's flash needed more (docs/firmware-size.md). It runs on
+/// each frame, outside the controller's tick.
+pub static CRC: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&crc::CRC_32_ISCSI);

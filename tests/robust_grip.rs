@@ -51,8 +51,10 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
 
     /// The lead only ever adds: tick for tick, whatever the input, a controller with an
-    /// actuator lag commands at least what the same controller without one commands (the
-    /// rate limits and the clamp are monotone, and the lead target is never below N_req).
+    /// actuator lag (told, and identified from whatever normal forces it measures)
+    /// commands at least what the same controller commands through an ideal actuator,
+    /// which it identifies as one and never leads (the rate limits and the clamp are
+    /// monotone, and the lead target is never below N_req).
     #[test]
     fn the_lead_never_asks_less_than_the_present_need(
         steps in prop::collection::vec(step(), 1..300),
@@ -74,8 +76,9 @@ proptest! {
             let (a, b) = match *s {
                 Step::Load { f, m, n, dt_us } => {
                     t += dt_us;
+                    let ideal = frame(t, f, m, plain.command_n(), SlipSignal::None);
                     let x = frame(t, f, m, n, SlipSignal::None);
-                    (plain.tick(&x), ahead.tick(&x))
+                    (plain.tick(&ideal), ahead.tick(&x))
                 }
                 Step::Bad => {
                     let x = frame(t + 1, f64::NAN, 0.0, 1.0, SlipSignal::None);

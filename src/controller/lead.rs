@@ -27,8 +27,23 @@
 //! estimate by about `2·FILTER_TAU_S`; loads that change much faster than that are
 //! covered by the safety factor and, with a slip sensor, by the slip response.
 //!
-//! With `actuator_lag_s = 0` none of this runs: the target is `N_req`, bit for bit.
-//! Cost per tick: about ten multiplications and one division.
+//! `τ` and `r` are what the controller has identified of its actuator
+//! ([`actuator`](super::actuator)), starting from `actuator_lag_s` and
+//! `actuator_slew_n_per_s` as priors: an actuator nobody described gets its lead once the
+//! first rise of the load has shown its lag. While the identified lag is 0 (an ideal
+//! actuator, or none seen yet) the target is `N_req`, bit for bit.
+//!
+//! **Oscillating loads.** For a load that swings up and down faster than the command may
+//! fall (`fall_rate_n_per_s`), leading every rise would ratchet the command up to the
+//! swing's peak plus a lead on top of it: a sinusoid through a lag `τ` asks for an
+//! amplitude `sqrt(1 + (ωτ)²)` times its own, 2.7 × at 10 Hz through 40 ms. Holding it
+//! only needs the actuator at the peak, which the slow fall keeps it near anyway. So once
+//! the requirement has turned down (a local peak) within the last [`SWING_WINDOW_S`], the
+//! target is capped at the highest requirement of that window: the lead brings the
+//! command up to the last peak early, never above it. A load that rises past its recent
+//! peaks (a lift) gets the full lead again once the window has passed.
+//!
+//! Cost per tick: about fifteen multiplications and one division.
 
 use crate::real::Real;
 
@@ -38,40 +53,41 @@ pub const FILTER_TAU_S: f64 = 0.006;
 pub const RATE_DEADBAND_N_PER_S: f64 = 2.0;
 /// The longest lead horizon, in actuator lags.
 pub const HORIZON_MAX_LAGS: f64 = 4.0;
+/// How long after a peak of the requirement its lead stays capped at the window's peak
+/// [s] (covers a period of shakes of 2 Hz and faster).
+pub const SWING_WINDOW_S: f64 = 0.5;
 
 /// The lead filter's constants and state.
 #[derive(Debug, Clone)]
 pub(crate) struct Lead<T> {
-    enabled: bool,
-    lag_s: T,
-    inv_slew: T,
-    max_horizon_s: T,
     alpha: T,
     inv_dt: T,
     deadband: T,
+    window_ticks: u32,
     // State.
     level: Option<T>,
     rate: T,
+    since_peak: u32,
+    peak_now: T,
+    peak_before: T,
+    peak_age: u32,
 }
 
 impl<T: Real> Lead<T> {
-    /// For a validated configuration's actuator lag, actuator slew and tick period.
-    pub(crate) fn new(actuator_lag_s: f64, actuator_slew_n_per_s: f64, tick_period_s: f64) -> Self {
-        let inv_slew = if actuator_slew_n_per_s.is_finite() {
-            1.0 / actuator_slew_n_per_s
-        } else {
-            0.0
-        };
+    /// For a validated configuration's tick period.
+    pub(crate) fn new(tick_period_s: f64) -> Self {
+        let w = libm::ceil(SWING_WINDOW_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
         Self {
-            enabled: actuator_lag_s > 0.0,
-            lag_s: T::of(actuator_lag_s),
-            inv_slew: T::of(inv_slew),
-            max_horizon_s: T::of(actuator_lag_s * HORIZON_MAX_LAGS),
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             inv_dt: T::of(1.0 / tick_period_s),
             deadband: T::of(RATE_DEADBAND_N_PER_S),
+            window_ticks: w as u32,
             level: None,
             rate: T::zero(),
+            since_peak: u32::MAX,
+            peak_now: T::zero(),
+            peak_before: T::zero(),
+            peak_age: 0,
         }
     }
 
@@ -79,38 +95,71 @@ impl<T: Real> Lead<T> {
     pub(crate) fn reset(&mut self) {
         self.level = None;
         self.rate = T::zero();
+        self.since_peak = u32::MAX;
+        self.peak_now = T::zero();
+        self.peak_before = T::zero();
+        self.peak_age = 0;
     }
 
-    /// Takes this tick's (finite, non-negative) requirement `required_n` and returns the
-    /// target: `required_n` plus the lead, never less than `required_n`.
-    #[inline]
-    pub(crate) fn target(&mut self, required_n: T) -> T {
-        if !self.enabled {
-            return required_n;
+    /// Tracks the requirement's peak over the last one to two windows.
+    fn track_peak(&mut self, required_n: T) {
+        self.peak_age = self.peak_age.saturating_add(1);
+        if self.peak_age > self.window_ticks {
+            self.peak_before = self.peak_now;
+            self.peak_now = T::zero();
+            self.peak_age = 1;
         }
+        if required_n > self.peak_now {
+            self.peak_now = required_n;
+        }
+    }
+
+    /// Takes this tick's (finite, non-negative) requirement `required_n` and the
+    /// identified actuator (`lag_s` ≥ 0, 0 for none; `inv_slew` = 1/slew ≥ 0, 0 when not
+    /// limited) and returns the target: `required_n` plus the lead, never less than
+    /// `required_n`. With no lag it only keeps the rate filters warm.
+    #[inline]
+    pub(crate) fn target(&mut self, required_n: T, lag_s: T, inv_slew: T) -> T {
         let Some(level) = self.level else {
             self.level = Some(required_n);
             return required_n;
         };
         let next = level + (required_n - level) * self.alpha;
         let raw = (next - level) * self.inv_dt;
+        let before = self.rate;
         self.rate = self.rate + (raw - self.rate) * self.alpha;
         self.level = Some(next);
+        if !(lag_s > T::zero()) {
+            return required_n;
+        }
+        self.track_peak(required_n);
+        // A local peak of the requirement: its rate turned from rising to falling.
+        self.since_peak = if before > self.deadband && !(self.rate > self.deadband) {
+            0
+        } else {
+            self.since_peak.saturating_add(1)
+        };
         let rising = self.rate - self.deadband;
         if !(rising > T::zero()) {
             return required_n;
         }
-        let climb = T::one() - self.rate * self.inv_slew;
+        let climb = T::one() - self.rate * inv_slew;
+        let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
         let horizon = if climb > T::zero() {
-            (self.lag_s / climb).min(self.max_horizon_s)
+            (lag_s / climb).min(max_horizon)
         } else {
-            self.max_horizon_s
+            max_horizon
         };
         let lead = rising * horizon;
-        if lead.is_finite() {
-            required_n + lead
+        if !lead.is_finite() {
+            return required_n;
+        }
+        let ahead = required_n + lead;
+        if self.since_peak < self.window_ticks {
+            let peak = self.peak_now.max(self.peak_before);
+            ahead.min(peak.max(required_n))
         } else {
-            required_n
+            ahead
         }
     }
 }

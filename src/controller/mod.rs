@@ -1,5 +1,6 @@
 //! The per-tick slip-prevention controller (docs/model.md, "The slip-prevention rule").
 
+pub mod actuator;
 pub mod blob;
 mod capacity;
 mod config;

@@ -26,6 +26,20 @@
 //! at 1 kHz): a one-tick report is taken as sensor noise, the usual debounce of slip
 //! detectors. A gross report is acted on at once.
 //!
+//! **Creep is not slip.** On a soft contact the lightly pressed edge of the patch slides
+//! long before the contact does (partial slip grows with the load from zero, as in
+//! Cattaneo and Mindlin's contact), and a tactile sensor that thresholds a slip velocity
+//! or a slipping area reports it as incipient slip, persistently, for as long as the load
+//! stays. Taken as slip, such a signal drove the margin to [`MARGIN_MAX`] and `μ̂` to its
+//! floor, costing 2–4 × the force the load needs. So an incipient report at a recent
+//! utilisation below [`CREEP_UTILISATION`] (under the present belief) is creep: it raises
+//! the margin at most to [`CREEP_MARGIN_MAX`] and is no evidence about `μ`. A gross
+//! report, and an incipient one at a load near the limit, get the full response: `μ̂`
+//! moves only on a signal consistent with the limit surface, a load at utilisation
+//! close to 1 under the present belief (or a gross slip, which is the limit reached). If
+//! the true `μ` is so far below the belief that the contact creeps at a believed
+//! utilisation under 0.7, the gross slip that follows is what teaches the controller.
+//!
 //! A signal that persists steps the margin and the estimate again only after
 //! [`REFRACTORY_S`]: the actuator needs that long to act on the first step, and the
 //! load measured meanwhile sits on a force that is already rising.
@@ -79,6 +93,13 @@ pub const MU_FLOOR_FRACTION: f64 = 0.5;
 /// A slip signal at a utilisation below this (under the present belief) is not taken as
 /// evidence about `μ`.
 pub const PLAUSIBLE_UTILISATION: f64 = 0.4;
+/// An incipient report at a utilisation below this (the recent peak, under the present
+/// belief) is creep: the soft patch's edge sliding at a moderate load, which a tactile
+/// sensor reports for as long as the load stays. It raises the margin at most to
+/// [`CREEP_MARGIN_MAX`] and never moves `μ̂`.
+pub const CREEP_UTILISATION: f64 = 0.7;
+/// The most margin creep alone can ask for.
+pub const CREEP_MARGIN_MAX: f64 = 1.1;
 /// How long an incipient report must persist before it is acted on [s]: a shorter one is
 /// taken as sensor noise (a gross report is acted on at once).
 pub const INCIPIENT_CONFIRM_S: f64 = 0.002;
@@ -247,6 +268,15 @@ impl<T: Real> SlipResponse<T> {
         }
         self.since_step = 0;
         self.pristine = false;
+        let u = self.peak_now.max(self.peak_before);
+        if signal == SlipSignal::Incipient && u < T::of(CREEP_UTILISATION) {
+            // Creep: a little margin, no evidence about μ.
+            let cap = self.margin.max(T::of(CREEP_MARGIN_MAX));
+            let margin = (self.margin + step).min(cap);
+            let changed = margin > self.margin;
+            self.margin = margin;
+            return changed;
+        }
         let margin = (self.margin + step).min(T::of(MARGIN_MAX));
         let mut changed = margin > self.margin;
         self.margin = margin;
@@ -255,7 +285,6 @@ impl<T: Real> SlipResponse<T> {
         // that rose faster than the grip; the margin covers it.)
         let evidence = signal == SlipSignal::Gross || self.episode_steps > 0;
         self.episode_steps = self.episode_steps.saturating_add(1);
-        let u = self.peak_now.max(self.peak_before);
         if evidence && u >= T::of(PLAUSIBLE_UTILISATION) && u < T::one() {
             let mu = (self.mu_hat * u).max(self.mu_floor);
             if mu < self.mu_hat {

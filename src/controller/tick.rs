@@ -1,5 +1,6 @@
 //! The controller: validated once, then one total function per tick.
 
+use crate::controller::actuator::ActuatorId;
 use crate::controller::capacity::{Capacity, Solution, TableError};
 use crate::controller::config::ControllerConfig;
 use crate::controller::lead::Lead;
@@ -140,6 +141,7 @@ pub struct Controller<T, M = Libm> {
     moment_range: T,
     stale_ticks: u32,
     lead: Lead<T>,
+    actuator: ActuatorId<T>,
     slip_response: SlipResponse<T>,
     // State.
     command: T,
@@ -179,6 +181,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.bad_ticks = 0;
         self.slip_node = 0;
         self.lead.reset();
+        self.actuator.reset();
         self.slip_response.reset();
     }
 
@@ -288,6 +291,18 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.slip_response.mu_estimate()
     }
 
+    /// The actuator's lag the controller has identified [s] (0: ideal, or none seen yet;
+    /// see [`actuator`](super::actuator)).
+    pub fn actuator_lag_estimate_s(&self) -> T {
+        self.actuator.lag_s()
+    }
+
+    /// The actuator's slew the controller has identified [N/s] (the configured one, ∞
+    /// when not given, until a slew-limited tick is seen).
+    pub fn actuator_slew_estimate_n_per_s(&self) -> T {
+        self.actuator.slew_n_per_s()
+    }
+
     /// The margin multiplying the safety factor (see [`slip`](super::slip)).
     pub fn margin(&self) -> T {
         self.slip_response.margin()
@@ -373,7 +388,12 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             Status::Ok
         };
-        let ahead = self.lead.target(req.force_n.min(self.n_max));
+        self.actuator.observe(self.command, m.normal_force_n);
+        let ahead = self.lead.target(
+            req.force_n.min(self.n_max),
+            self.actuator.lag_s(),
+            self.actuator.inv_slew(),
+        );
         let target = ahead.max(self.n_min).min(self.n_max);
         let limited = self.rate_limited(target);
         // The emergency rise: on a slip signal the command goes to its new target at once.

@@ -78,18 +78,23 @@ impl core::error::Error for FrameError {}
 /// `out` and returns the frame's length. Allocates nothing; `out` of [`MAX_FRAME_LEN`]
 /// bytes always suffices for a [`Request`](super::Request) or [`Reply`](super::Reply).
 ///
-/// postcard writes the message and its CRC to the start of `out`; [`cobs_encode_in_place`]
-/// then frames them where they lie. Both steps index only through checked accessors, so
+/// postcard writes the message to the start of `out`, its CRC (little-endian) follows;
+/// [`cobs_encode_in_place`] then frames them where they lie. Both steps index only through checked accessors, so
 /// the encoder is proven free of panics at link time (`scripts/no-panic.sh`).
 ///
 /// On error the contents of `out` are unspecified.
 #[inline(never)]
 pub fn encode<M: Serialize + ?Sized>(msg: &M, out: &mut [u8]) -> Result<usize, FrameError> {
-    let raw_len = match postcard::to_slice_crc32(msg, out, CRC.digest()) {
+    let body_len = match postcard::to_slice(msg, out) {
         Ok(bytes) => bytes.len(),
         Err(postcard::Error::SerializeBufferFull) => return Err(FrameError::BufferTooSmall),
         Err(_) => return Err(FrameError::Serialize),
     };
+    let crc = CRC.checksum(out.get(..body_len).ok_or(FrameError::BufferTooSmall)?);
+    let raw_len = body_len + CRC_LEN;
+    out.get_mut(body_len..raw_len)
+        .ok_or(FrameError::BufferTooSmall)?
+        .copy_from_slice(&crc.to_le_bytes());
     let len = cobs_encode_in_place(out, raw_len).ok_or(FrameError::BufferTooSmall)?;
     *out.get_mut(len).ok_or(FrameError::BufferTooSmall)? = 0;
     Ok(len + 1)

@@ -3,6 +3,7 @@
 //! spare slot), and handing a running grasp over to a new configuration.
 
 use super::{Controller, FromTablesError, TickOutput};
+use crate::controller::actuator::ActuatorId;
 use crate::controller::capacity::{Capacity, Tables};
 use crate::controller::config::{Checked, ControllerConfig};
 use crate::controller::lead::Lead;
@@ -128,7 +129,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             force_range: T::zero(),
             moment_range: T::zero(),
             stale_ticks: 1,
-            lead: Lead::new(0.0, f64::INFINITY, 1e-3),
+            lead: Lead::new(1e-3),
+            actuator: ActuatorId::new(0.0, f64::INFINITY, 1e-3),
             slip_response: SlipResponse::new(1.0, 1e-3),
             command: T::zero(),
             last: None,
@@ -205,7 +207,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             ticks.max(1.0) as u32
         };
-        self.lead = Lead::new(
+        self.lead = Lead::new(config.tick_period_s);
+        self.actuator = ActuatorId::new(
             config.actuator_lag_s,
             config.actuator_slew_n_per_s,
             config.tick_period_s,
@@ -250,6 +253,11 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             && previous.config.tick_period_s == self.config.tick_period_s
         {
             self.slip_response = previous.slip_response.clone();
+        }
+        // The actuator is the same hardware: what was identified of it stays, unless the
+        // tick period (which the identifier counts in) changed.
+        if previous.config.tick_period_s == self.config.tick_period_s {
+            self.actuator = previous.actuator.clone();
         }
         self.last_good_us = previous.last_good_us;
         self.resync = previous.resync;

@@ -144,16 +144,18 @@ fn the_lag_is_found_from_a_wrong_prior() {
 
 #[test]
 fn a_slew_that_binds_is_found() {
-    // A heavy, fast lift through a 100 N/s actuator.
+    // A 100 N/s actuator: a light lift shows its lag (the slew does not bind), then heavy,
+    // fast lifts make it slew.
     let act = Actuator {
         tau_s: 0.01,
         slew: 100.0,
         force_n: 0.0,
     };
-    let heavy = |t: f64| 3.0 * lift(t) - 3.0 * lift(t - 0.8) + 3.0 * lift(t - 1.4);
-    let o = run(lagging(0.0, f64::INFINITY), act, 2.0, heavy);
+    let load = |t: f64| lift(t) + 3.0 * lift(t - 0.5) - 3.0 * lift(t - 1.0) + 3.0 * lift(t - 1.5);
+    let o = run(lagging(0.0, f64::INFINITY), act, 2.2, load);
     eprintln!("slew 100 N/s -> {:.1} N/s, lag {:.4} s", o.slew, o.lag_s);
     assert!((o.slew / 100.0 - 1.0).abs() < 0.15, "{}", o.slew);
+    assert!((o.lag_s / 0.01 - 1.0).abs() < 0.5, "{}", o.lag_s);
 }
 
 #[test]

@@ -39,8 +39,8 @@
 //! amplitude `sqrt(1 + (ωτ)²)` times its own, 2.7 × at 10 Hz through 40 ms. Holding it
 //! only needs the actuator at the peak, which the slow fall keeps it near anyway. So once
 //! the requirement has turned down (a local peak) within the last [`SWING_WINDOW_S`], the
-//! target is capped at the highest requirement of that window: the lead brings the
-//! command up to the last peak early, never above it. A load that rises past its recent
+//! target is capped at that peak (the filtered requirement where its rate turned): the
+//! lead brings the command up to the last peak early, never above it. A load that rises past its recent
 //! peaks (a lift) gets the full lead again once the window has passed.
 //!
 //! Cost per tick: about fifteen multiplications and one division.
@@ -68,9 +68,7 @@ pub(crate) struct Lead<T> {
     level: Option<T>,
     rate: T,
     since_peak: u32,
-    peak_now: T,
-    peak_before: T,
-    peak_age: u32,
+    peak: T,
 }
 
 impl<T: Real> Lead<T> {
@@ -85,9 +83,7 @@ impl<T: Real> Lead<T> {
             level: None,
             rate: T::zero(),
             since_peak: u32::MAX,
-            peak_now: T::zero(),
-            peak_before: T::zero(),
-            peak_age: 0,
+            peak: T::zero(),
         }
     }
 
@@ -96,22 +92,7 @@ impl<T: Real> Lead<T> {
         self.level = None;
         self.rate = T::zero();
         self.since_peak = u32::MAX;
-        self.peak_now = T::zero();
-        self.peak_before = T::zero();
-        self.peak_age = 0;
-    }
-
-    /// Tracks the requirement's peak over the last one to two windows.
-    fn track_peak(&mut self, required_n: T) {
-        self.peak_age = self.peak_age.saturating_add(1);
-        if self.peak_age > self.window_ticks {
-            self.peak_before = self.peak_now;
-            self.peak_now = T::zero();
-            self.peak_age = 1;
-        }
-        if required_n > self.peak_now {
-            self.peak_now = required_n;
-        }
+        self.peak = T::zero();
     }
 
     /// Takes this tick's (finite, non-negative) requirement `required_n` and the
@@ -132,23 +113,28 @@ impl<T: Real> Lead<T> {
         if !(lag_s > T::zero()) {
             return required_n;
         }
-        self.track_peak(required_n);
-        // A local peak of the requirement: its rate turned from rising to falling.
-        self.since_peak = if before > self.deadband && !(self.rate > self.deadband) {
-            0
+        // A local peak of the requirement: its rate turned from rising to falling. The
+        // filtered level there is the peak (within the filter's smoothing).
+        if before > self.deadband && !(self.rate > self.deadband) {
+            self.since_peak = 0;
+            self.peak = next;
         } else {
-            self.since_peak.saturating_add(1)
-        };
+            self.since_peak = self.since_peak.saturating_add(1);
+        }
         let rising = self.rate - self.deadband;
         if !(rising > T::zero()) {
             return required_n;
         }
-        let climb = T::one() - self.rate * inv_slew;
         let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
-        let horizon = if climb > T::zero() {
-            (lag_s / climb).min(max_horizon)
+        let horizon = if inv_slew > T::zero() {
+            let climb = T::one() - self.rate * inv_slew;
+            if climb > T::zero() {
+                (lag_s / climb).min(max_horizon)
+            } else {
+                max_horizon
+            }
         } else {
-            max_horizon
+            lag_s
         };
         let lead = rising * horizon;
         if !lead.is_finite() {
@@ -156,8 +142,7 @@ impl<T: Real> Lead<T> {
         }
         let ahead = required_n + lead;
         if self.since_peak < self.window_ticks {
-            let peak = self.peak_now.max(self.peak_before);
-            ahead.min(peak.max(required_n))
+            ahead.min(self.peak.max(required_n))
         } else {
             ahead
         }

@@ -104,6 +104,7 @@ pub(crate) struct ActuatorId<T> {
     slewed: bool,
     lag_samples: u16,
     lag: T,
+    lead_lag: T,
     limited_run: u8,
 }
 
@@ -127,8 +128,10 @@ impl<T: Real> ActuatorId<T> {
             slewed: false,
             lag_samples: 0,
             lag: T::of(actuator_lag_s),
+            lead_lag: T::zero(),
             limited_run: 0,
         }
+        .with_lead_lag()
     }
 
     /// Back to the priors.
@@ -143,14 +146,25 @@ impl<T: Real> ActuatorId<T> {
         self.slewed = false;
         self.lag_samples = 0;
         self.lag = self.prior_lag;
+        self.lead_lag = self.floored(self.lag);
         self.limited_run = 0;
+    }
+
+    fn with_lead_lag(mut self) -> Self {
+        self.lead_lag = self.floored(self.lag);
+        self
     }
 
     /// The identified lag `τ̂` [s] (0 for an actuator faster than the floor).
     #[inline]
     pub(crate) fn lag_s(&self) -> T {
-        if self.lag >= self.floor && self.lag.is_finite() {
-            self.lag
+        self.lead_lag
+    }
+
+    /// `τ̂` as the lead takes it: 0 below the floor.
+    fn floored(&self, lag: T) -> T {
+        if lag >= self.floor && lag.is_finite() {
+            lag
         } else {
             T::zero()
         }
@@ -178,15 +192,19 @@ impl<T: Real> ActuatorId<T> {
             return;
         };
         let u_next = u_bar + (commanded_n - u_bar) * self.alpha;
-        let n_next = self.n_bar + (measured_n - self.n_bar) * self.alpha;
-        let command_rate = (u_next - u_bar) * self.inv_dt;
-        let rate = (n_next - self.n_bar) * self.inv_dt;
+        let n_bar = self.n_bar;
+        let n_next = n_bar + (measured_n - n_bar) * self.alpha;
         self.u_bar = Some(u_next);
         self.n_bar = n_next;
         // Selected on the command's rate, which the force sensor's noise does not touch
         // (selecting on the measured rate would favour ticks whose noise inflates it).
+        let command_rate = (u_next - u_bar) * self.inv_dt;
+        if !(command_rate.abs() >= T::of(RATE_MIN_N_PER_S)) {
+            return;
+        }
+        let rate = (n_next - n_bar) * self.inv_dt;
         let gap = u_next - n_next;
-        if !(command_rate.abs() >= T::of(RATE_MIN_N_PER_S) && gap * rate > T::zero()) {
+        if !(gap * rate > T::zero()) {
             return;
         }
         // Slew-limited: a large gap closed at under a share of the rate the lag would give.
@@ -228,6 +246,7 @@ impl<T: Real> ActuatorId<T> {
             self.s_nn = self.s_nn * self.forget + nn;
             self.lag_samples = self.lag_samples.saturating_add(1);
             self.lag = self.s_en / self.s_nn;
+            self.lead_lag = self.floored(self.lag);
         }
     }
 }

@@ -125,8 +125,8 @@ impl<T: Real> Lead<T> {
         if !(rising > T::zero()) {
             return required_n;
         }
-        let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
         let horizon = if inv_slew > T::zero() {
+            let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
             let climb = T::one() - self.rate * inv_slew;
             if climb > T::zero() {
                 (lag_s / climb).min(max_horizon)

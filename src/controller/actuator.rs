@@ -95,7 +95,8 @@ pub(crate) struct ActuatorId<T> {
     prior_slew: T,
     floor: T,
     // State.
-    u_bar: Option<T>,
+    started: bool,
+    u_bar: T,
     n_bar: T,
     s_en: T,
     s_nn: T,
@@ -119,7 +120,8 @@ impl<T: Real> ActuatorId<T> {
             prior_lag: T::of(actuator_lag_s),
             prior_slew: T::of(actuator_slew_n_per_s),
             floor: T::of(LAG_FLOOR_TICKS * tick_period_s),
-            u_bar: None,
+            started: false,
+            u_bar: T::zero(),
             n_bar: T::zero(),
             s_en: T::of(w * actuator_lag_s),
             s_nn: T::of(w),
@@ -137,7 +139,7 @@ impl<T: Real> ActuatorId<T> {
     /// Back to the priors.
     pub(crate) fn reset(&mut self) {
         let w = T::of(prior_weight(self.prior_lag.to_f64()));
-        self.u_bar = None;
+        self.started = false;
         self.n_bar = T::zero();
         self.s_en = w * self.prior_lag;
         self.s_nn = w;
@@ -186,15 +188,17 @@ impl<T: Real> ActuatorId<T> {
     /// Takes a good tick: `commanded_n` the command of the tick before, `measured_n` the
     /// normal force measured now (both finite: the caller checked the measurement).
     pub(crate) fn observe(&mut self, commanded_n: T, measured_n: T) {
-        let Some(u_bar) = self.u_bar else {
-            self.u_bar = Some(commanded_n);
+        if !self.started {
+            self.started = true;
+            self.u_bar = commanded_n;
             self.n_bar = measured_n;
             return;
-        };
+        }
+        let u_bar = self.u_bar;
         let u_next = u_bar + (commanded_n - u_bar) * self.alpha;
         let n_bar = self.n_bar;
         let n_next = n_bar + (measured_n - n_bar) * self.alpha;
-        self.u_bar = Some(u_next);
+        self.u_bar = u_next;
         self.n_bar = n_next;
         // Selected on the command's rate, which the force sensor's noise does not touch
         // (selecting on the measured rate would favour ticks whose noise inflates it).
@@ -240,13 +244,15 @@ impl<T: Real> ActuatorId<T> {
             return;
         }
         // Each new sample weighs the older ones down by the forgetting factor.
-        let (en, nn) = (gap * rate, rate * rate);
-        if en.is_finite() && nn.is_finite() {
-            self.s_en = self.s_en * self.forget + en;
-            self.s_nn = self.s_nn * self.forget + nn;
-            self.lag_samples = self.lag_samples.saturating_add(1);
-            self.lag = self.s_en / self.s_nn;
-            self.lead_lag = self.floored(self.lag);
+        // Finite: the measurement passed the sensor-range check and the command is within
+        // [N_min, N_max], so |gap| and |rate|·dt are bounded by the ranges, and the
+        // forgetting bounds the sums.
+        self.s_en = self.s_en * self.forget + gap * rate;
+        self.s_nn = self.s_nn * self.forget + rate * rate;
+        if self.lag_samples < LAG_SAMPLES_FOR_SLEW {
+            self.lag_samples += 1;
         }
+        self.lag = self.s_en / self.s_nn;
+        self.lead_lag = self.floored(self.lag);
     }
 }

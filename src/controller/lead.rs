@@ -65,7 +65,8 @@ pub(crate) struct Lead<T> {
     deadband: T,
     window_ticks: u32,
     // State.
-    level: Option<T>,
+    started: bool,
+    level: T,
     rate: T,
     since_peak: u32,
     peak: T,
@@ -80,7 +81,8 @@ impl<T: Real> Lead<T> {
             inv_dt: T::of(1.0 / tick_period_s),
             deadband: T::of(RATE_DEADBAND_N_PER_S),
             window_ticks: w as u32,
-            level: None,
+            started: false,
+            level: T::zero(),
             rate: T::zero(),
             since_peak: u32::MAX,
             peak: T::zero(),
@@ -89,7 +91,7 @@ impl<T: Real> Lead<T> {
 
     /// Forgets the load's history.
     pub(crate) fn reset(&mut self) {
-        self.level = None;
+        self.started = false;
         self.rate = T::zero();
         self.since_peak = u32::MAX;
         self.peak = T::zero();
@@ -101,15 +103,17 @@ impl<T: Real> Lead<T> {
     /// `required_n`. With no lag it only keeps the rate filters warm.
     #[inline]
     pub(crate) fn target(&mut self, required_n: T, lag_s: T, inv_slew: T) -> T {
-        let Some(level) = self.level else {
-            self.level = Some(required_n);
+        if !self.started {
+            self.started = true;
+            self.level = required_n;
             return required_n;
-        };
+        }
+        let level = self.level;
         let next = level + (required_n - level) * self.alpha;
         let raw = (next - level) * self.inv_dt;
         let before = self.rate;
         self.rate = self.rate + (raw - self.rate) * self.alpha;
-        self.level = Some(next);
+        self.level = next;
         if !(lag_s > T::zero()) {
             return required_n;
         }

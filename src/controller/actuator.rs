@@ -90,6 +90,7 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
 pub(crate) struct ActuatorId<T> {
     alpha: T,
     inv_dt: T,
+    min_step: T,
     forget: T,
     prior_lag: T,
     prior_slew: T,
@@ -116,6 +117,7 @@ impl<T: Real> ActuatorId<T> {
         Self {
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             inv_dt: T::of(1.0 / tick_period_s),
+            min_step: T::of(RATE_MIN_N_PER_S * tick_period_s),
             forget: T::of(1.0 - 1.0 / MEMORY_SAMPLES),
             prior_lag: T::of(actuator_lag_s),
             prior_slew: T::of(actuator_slew_n_per_s),
@@ -202,8 +204,7 @@ impl<T: Real> ActuatorId<T> {
         self.n_bar = n_next;
         // Selected on the command's rate, which the force sensor's noise does not touch
         // (selecting on the measured rate would favour ticks whose noise inflates it).
-        let command_rate = (u_next - u_bar) * self.inv_dt;
-        if !(command_rate.abs() >= T::of(RATE_MIN_N_PER_S)) {
+        if !((u_next - u_bar).abs() >= self.min_step) {
             return;
         }
         let rate = (n_next - n_bar) * self.inv_dt;

@@ -61,7 +61,7 @@ pub const SWING_WINDOW_S: f64 = 0.5;
 #[derive(Debug, Clone)]
 pub(crate) struct Lead<T> {
     alpha: T,
-    inv_dt: T,
+    alpha_per_s: T,
     deadband: T,
     window_ticks: u32,
     // State.
@@ -78,7 +78,7 @@ impl<T: Real> Lead<T> {
         let w = libm::ceil(SWING_WINDOW_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
         Self {
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
-            inv_dt: T::of(1.0 / tick_period_s),
+            alpha_per_s: T::of(1.0 / (FILTER_TAU_S + tick_period_s)),
             deadband: T::of(RATE_DEADBAND_N_PER_S),
             window_ticks: w as u32,
             started: false,
@@ -109,8 +109,9 @@ impl<T: Real> Lead<T> {
             return required_n;
         }
         let level = self.level;
-        let next = level + (required_n - level) * self.alpha;
-        let raw = (next - level) * self.inv_dt;
+        let step = required_n - level;
+        let next = level + step * self.alpha;
+        let raw = step * self.alpha_per_s;
         let before = self.rate;
         self.rate = self.rate + (raw - self.rate) * self.alpha;
         self.level = next;
@@ -140,11 +141,8 @@ impl<T: Real> Lead<T> {
         } else {
             lag_s
         };
-        let lead = rising * horizon;
-        if !lead.is_finite() {
-            return required_n;
-        }
-        let ahead = required_n + lead;
+        // Finite: the filters' state and the identified lag are.
+        let ahead = required_n + rising * horizon;
         if self.since_peak < self.window_ticks {
             ahead.min(self.peak.max(required_n))
         } else {

@@ -58,6 +58,24 @@ fn curves(rows: &[Row]) -> Vec<Curve<'_>> {
     out
 }
 
+/// A log axis' tick label: two significant digits at most (plotters' own prints the
+/// float's whole expansion, and its labels ran into each other).
+fn tick_label(x: f64) -> String {
+    let digits = if x >= 10.0 {
+        0
+    } else if x >= 1.0 {
+        1
+    } else {
+        2
+    };
+    let s = format!("{x:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// Every setting, force on a log axis.
 fn draw_all<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -83,6 +101,9 @@ fn draw_all<DB: DrawingBackend>(
         .build_cartesian_2d((x_min..x_max).log_scale(), 0.0..y_max)?;
     chart
         .configure_mesh()
+        .x_labels(8)
+        .x_label_formatter(&|x| tick_label(*x))
+        .max_light_lines(3)
         .x_desc("mean normal force / oracle's mean force [-] (log scale)")
         .y_desc("trials dropped [%]")
         .label_style(("sans-serif", 16))
@@ -124,14 +145,16 @@ fn draw_zoom<DB: DrawingBackend>(
     let all = curves(rows);
     let inside = |p: &Point| p.1 <= ZOOM_DROP_PCT;
     // From the least force that drops at most ZOOM_DROP_PCT to 1.3 times the least force at
-    // which some baseline drops nothing (or softgrip's farthest such point).
+    // which some baseline reaches its fewest drops (none, unless some trials cannot be held
+    // at all), or softgrip's farthest default.
     let x_min = all
         .iter()
         .flat_map(|(_, pts)| pts.iter().filter(|p| inside(p)).map(|p| p.0))
         .fold(f64::INFINITY, f64::min);
     let least_zero = |c: &Curve<'_>| {
+        let fewest = c.1.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
         c.1.iter()
-            .filter(|p| p.1 == 0.0)
+            .filter(|p| p.1 == fewest && inside(p))
             .map(|p| p.0)
             .fold(f64::INFINITY, f64::min)
     };

@@ -38,10 +38,11 @@
 //! swing's peak plus a lead on top of it: a sinusoid through a lag `τ` asks for an
 //! amplitude `sqrt(1 + (ωτ)²)` times its own, 2.7 × at 10 Hz through 40 ms. Holding it
 //! only needs the actuator at the peak, which the slow fall keeps it near anyway. So once
-//! the requirement has turned down (a local peak) within the last [`SWING_WINDOW_S`], the
-//! target is capped at that peak (the filtered requirement where its rate turned): the
-//! lead brings the command up to the last peak early, never above it. A load that rises past its recent
-//! peaks (a lift) gets the full lead again once the window has passed.
+//! the requirement has turned down (a local peak) within the last [`SWING_WINDOW_S`], a
+//! target below that peak (the highest requirement of the rise that ended there) is
+//! capped at it: the lead brings the command up to the last peak early, never above it.
+//! A requirement past the peak is new territory (a lift, a swing that grows) and gets the
+//! whole lead.
 //!
 //! Cost per tick: about fifteen multiplications and one division.
 
@@ -70,6 +71,7 @@ pub(crate) struct Lead<T> {
     rate: T,
     since_peak: u32,
     peak: T,
+    rise_max: T,
 }
 
 impl<T: Real> Lead<T> {
@@ -86,6 +88,7 @@ impl<T: Real> Lead<T> {
             rate: T::zero(),
             since_peak: u32::MAX,
             peak: T::zero(),
+            rise_max: T::zero(),
         }
     }
 
@@ -95,6 +98,7 @@ impl<T: Real> Lead<T> {
         self.rate = T::zero();
         self.since_peak = u32::MAX;
         self.peak = T::zero();
+        self.rise_max = T::zero();
     }
 
     /// Takes this tick's (finite, non-negative) requirement `required_n` and the
@@ -119,10 +123,14 @@ impl<T: Real> Lead<T> {
             return required_n;
         }
         // A local peak of the requirement: its rate turned from rising to falling. The
-        // filtered level there is the peak (within the filter's smoothing).
+        // peak is the highest requirement of the rise that ended there.
+        if required_n > self.rise_max {
+            self.rise_max = required_n;
+        }
         if before > self.deadband && !(self.rate > self.deadband) {
             self.since_peak = 0;
-            self.peak = next;
+            self.peak = self.rise_max;
+            self.rise_max = required_n;
         } else {
             self.since_peak = self.since_peak.saturating_add(1);
         }
@@ -143,8 +151,10 @@ impl<T: Real> Lead<T> {
         };
         // Finite: the filters' state and the identified lag are.
         let ahead = required_n + rising * horizon;
-        if self.since_peak < self.window_ticks {
-            ahead.min(self.peak.max(required_n))
+        // Below the last peak, the lead stops at it; past it the load is in new territory
+        // (a lift, or a swing that grows) and gets the whole lead.
+        if self.since_peak < self.window_ticks && required_n < self.peak {
+            ahead.min(self.peak)
         } else {
             ahead
         }

@@ -141,8 +141,9 @@ impl<T: Real> Lead<T> {
         let horizon = if inv_slew > T::zero() {
             let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
             let climb = T::one() - self.rate * inv_slew;
-            if climb > T::zero() {
-                (lag_s / climb).min(max_horizon)
+            let h = lag_s / climb;
+            if climb > T::zero() && h < max_horizon {
+                h
             } else {
                 max_horizon
             }
@@ -153,8 +154,9 @@ impl<T: Real> Lead<T> {
         let ahead = required_n + rising * horizon;
         // Below the last peak, the lead stops at it; past it the load is in new territory
         // (a lift, or a swing that grows) and gets the whole lead.
-        if self.since_peak < self.window_ticks && required_n < self.peak {
-            ahead.min(self.peak)
+        // (Comparisons, not `min`: on the Cortex-M4F that is a call.)
+        if self.since_peak < self.window_ticks && required_n < self.peak && ahead > self.peak {
+            self.peak
         } else {
             ahead
         }

@@ -67,3 +67,25 @@ impl TickMath<f32> for Micromath {
         <f32 as micromath::F32Ext>::sqrt(x)
     }
 }
+
+/// `min(a, b)` as `f32::min` gives it (a NaN yields the other; the sign of a zero aside),
+/// by comparisons: the Cortex-M4F has no `VMINNM`, so `min` is an out-of-line `fminf`
+/// call, and the tick clamps seven times (the slip response three more).
+#[inline(always)]
+pub(crate) fn lesser<T: Real>(a: T, b: T) -> T {
+    if b < a || a.is_nan() {
+        b
+    } else {
+        a
+    }
+}
+
+/// `max(a, b)` as `f32::max` gives it, by comparisons (see [`lesser`]).
+#[inline(always)]
+pub(crate) fn greater<T: Real>(a: T, b: T) -> T {
+    if b > a || a.is_nan() {
+        b
+    } else {
+        a
+    }
+}

@@ -55,6 +55,7 @@
 //!
 //! Cost per tick: a few comparisons; a division on a tick that changes `μ̂`.
 
+use crate::controller::math::{greater, lesser};
 use crate::real::Real;
 use serde::{Deserialize, Serialize};
 
@@ -268,16 +269,19 @@ impl<T: Real> SlipResponse<T> {
         }
         self.since_step = 0;
         self.pristine = false;
-        let u = self.peak_now.max(self.peak_before);
+        let u = greater(self.peak_now, self.peak_before);
         if signal == SlipSignal::Incipient && u < T::of(CREEP_UTILISATION) {
-            // Creep: a little margin, no evidence about μ.
-            let cap = self.margin.max(T::of(CREEP_MARGIN_MAX));
-            let margin = (self.margin + step).min(cap);
-            let changed = margin > self.margin;
-            self.margin = margin;
-            return changed;
+            // Creep: a little margin, no evidence about μ. (Comparisons, not `min`/`max`:
+            // on the Cortex-M4F those are calls.)
+            let raised = self.margin + step;
+            let cap = T::of(CREEP_MARGIN_MAX);
+            if self.margin < cap {
+                self.margin = if raised < cap { raised } else { cap };
+                return true;
+            }
+            return false;
         }
-        let margin = (self.margin + step).min(T::of(MARGIN_MAX));
+        let margin = lesser(self.margin + step, T::of(MARGIN_MAX));
         let mut changed = margin > self.margin;
         self.margin = margin;
         // Evidence about μ: a gross slip, or an incipient one that outlasted a first step
@@ -286,7 +290,7 @@ impl<T: Real> SlipResponse<T> {
         let evidence = signal == SlipSignal::Gross || self.episode_steps > 0;
         self.episode_steps = self.episode_steps.saturating_add(1);
         if evidence && u >= T::of(PLAUSIBLE_UTILISATION) && u < T::one() {
-            let mu = (self.mu_hat * u).max(self.mu_floor);
+            let mu = greater(self.mu_hat * u, self.mu_floor);
             if mu < self.mu_hat {
                 self.mu_hat = mu;
                 self.inv_mu_hat = mu.recip();

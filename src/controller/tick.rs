@@ -4,7 +4,7 @@ use crate::controller::actuator::ActuatorId;
 use crate::controller::capacity::{Capacity, Solution, TableError};
 use crate::controller::config::ControllerConfig;
 use crate::controller::lead::Lead;
-use crate::controller::math::{Libm, TickMath};
+use crate::controller::math::{greater, lesser, Libm, TickMath};
 use crate::controller::slip::{SlipResponse, SlipSignal};
 use crate::controller::status::Status;
 use crate::error::ConfigError;
@@ -233,7 +233,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     fn rate_limited(&self, target: T) -> T {
         let up = self.command + self.rise_step;
         let down = self.command - self.fall_step;
-        target.min(up).max(down).max(self.n_min).min(self.n_max)
+        lesser(
+            greater(greater(lesser(target, up), down), self.n_min),
+            self.n_max,
+        )
     }
 
     /// One control tick. Total: any measurement, however hostile, gives a finite output
@@ -388,17 +391,21 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             Status::Ok
         };
-        self.actuator.observe(self.command, m.normal_force_n);
+        // A tick whose slip response stepped jumps the command past the rate limit (the
+        // emergency rise below): no sample of the actuator's normal response.
+        if !stepped {
+            self.actuator.observe(self.command, m.normal_force_n);
+        }
         let ahead = self.lead.target(
-            req.force_n.min(self.n_max),
+            lesser(req.force_n, self.n_max),
             self.actuator.lag_s(),
             self.actuator.inv_slew(),
         );
-        let target = ahead.max(self.n_min).min(self.n_max);
+        let target = lesser(greater(ahead, self.n_min), self.n_max);
         let limited = self.rate_limited(target);
         // The emergency rise: on a slip signal the command goes to its new target at once.
         self.command = if stepped {
-            limited.max(target)
+            greater(limited, target)
         } else {
             limited
         };

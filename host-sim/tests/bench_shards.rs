@@ -130,6 +130,7 @@ fn merged_shards_equal_the_whole_run_byte_for_byte() {
     let o = merge(&tmp("m3"), &mixed);
     let e = String::from_utf8_lossy(&o.stderr).into_owned();
     assert!(!o.status.success() && e.contains("different runs"), "{e}");
+    assert!(e.contains("options hard"), "{e}");
     for d in [whole, parts, merged, other] {
         let _ = std::fs::remove_dir_all(d);
     }

@@ -263,6 +263,21 @@ fn options_of(key: &Key, out: &Path) -> Result<BenchOptions, String> {
     })
 }
 
+/// The names of the options in which two keys differ.
+fn differing(a: &Key, b: &Key) -> String {
+    let (Ok(serde_json::Value::Object(x)), Ok(serde_json::Value::Object(y))) =
+        (serde_json::to_value(a), serde_json::to_value(b))
+    else {
+        return "options".into();
+    };
+    let names: Vec<&str> = x
+        .iter()
+        .filter(|(k, v)| y.get(*k) != Some(*v))
+        .map(|(k, _)| k.as_str())
+        .collect();
+    format!("options {}", names.join(", "))
+}
+
 /// Reads the shard files `paths` of one run and returns its options (writing to `out`)
 /// and every unit's result in the run's order; or what is wrong with them: a file that
 /// cannot be read, keys that differ, a unit missing, or one given twice.
@@ -276,9 +291,10 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
         match &key {
             Some((k, first)) if *k != file.key => {
                 return Err(format!(
-                    "{} and {} are shards of different runs (their options differ)",
+                    "{} and {} are shards of different runs (their {} differ)",
                     first.display(),
-                    path.display()
+                    path.display(),
+                    differing(k, &file.key)
                 ))
             }
             Some(_) => {}

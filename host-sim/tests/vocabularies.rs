@@ -152,7 +152,7 @@ fn bench_takes_pty_and_inprocess() {
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap())
                 .unwrap();
-        assert_eq!(json["link"], "pty", "{link}");
+        assert_eq!(json["key"]["link"], "pty", "{link}");
         let _ = std::fs::remove_dir_all(&out);
     }
 }

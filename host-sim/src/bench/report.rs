@@ -4,7 +4,7 @@ use super::shard::Key;
 use super::stats::Row;
 use super::sweep::{Sweep, TrialResult};
 use crate::sim::controllers::ControllerKind;
-use softgrip::controller::{ControllerConfig, Mode};
+use softgrip::controller::ControllerConfig;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -222,11 +222,7 @@ pub fn dominance(family: &str, rows: &[Row], max_drop_rate: f64) -> Dominance {
 
 /// softgrip's default row: the default setting of the default configuration's mode.
 pub fn softgrip_default(rows: &[Row]) -> Option<&Row> {
-    let mode = ControllerKind::Softgrip.softgrip_mode(ControllerConfig::DEFAULT.mode)?;
-    let kind = match mode {
-        Mode::Ellipse => ControllerKind::SoftgripEllipse,
-        Mode::Table => ControllerKind::SoftgripTable,
-    };
+    let kind = ControllerKind::of_mode(ControllerConfig::DEFAULT.mode);
     rows.iter()
         .find(|r| r.controller == kind.name() && r.default)
 }

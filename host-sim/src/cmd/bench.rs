@@ -10,7 +10,7 @@ use crate::finger_file::FingerFile;
 use crate::sim::controllers::{ControllerChoice, ControllerKind};
 use crate::CliError;
 use clap::Args;
-use softgrip::controller::{ControllerConfig, Mode};
+use softgrip::controller::ControllerConfig;
 use std::path::PathBuf;
 
 /// Arguments of `host-sim bench`.
@@ -123,11 +123,8 @@ fn finger_source(args: &BenchArgs) -> Result<FingerSource, CliError> {
 /// `softgrip` is softgrip in the default configuration's mode, which bench runs as the
 /// controller of that mode; any other kind is itself.
 fn default_mode(kind: ControllerKind) -> ControllerKind {
-    match kind.softgrip_mode(ControllerConfig::DEFAULT.mode) {
-        Some(Mode::Ellipse) => ControllerKind::SoftgripEllipse,
-        Some(Mode::Table) => ControllerKind::SoftgripTable,
-        None => kind,
-    }
+    kind.softgrip_mode(ControllerConfig::DEFAULT.mode)
+        .map_or(kind, ControllerKind::of_mode)
 }
 
 /// The families and sweeps an argument list selects.

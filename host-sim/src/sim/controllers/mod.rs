@@ -114,6 +114,15 @@ impl ControllerKind {
         Self::from_name(name).is_some_and(Self::is_softgrip)
     }
 
+    /// The controller that runs softgrip in `mode` alone (`softgrip-ellipse` or
+    /// `softgrip-table`).
+    pub fn of_mode(mode: Mode) -> Self {
+        match mode {
+            Mode::Ellipse => Self::SoftgripEllipse,
+            Mode::Table => Self::SoftgripTable,
+        }
+    }
+
     /// The mode softgrip runs in on a configuration whose own mode is `configured`
     /// (`softgrip` keeps it, the other two name theirs); `None` for a baseline.
     pub fn softgrip_mode(self, configured: Mode) -> Option<Mode> {

@@ -54,8 +54,6 @@ struct Outcome {
     shortfall_n: f64,
     mean_force_n: f64,
     mean_need_n: f64,
-    /// The mean command [N].
-    mean_command_n: f64,
     commands: Vec<f64>,
     /// The identified lag after each tick [s].
     lags: Vec<f64>,
@@ -128,7 +126,6 @@ fn run(
         shortfall_n: shortfall,
         mean_force_n: force / ticks as f64,
         mean_need_n: need / ticks as f64,
-        mean_command_n: commands.iter().sum::<f64>() / ticks as f64,
         commands,
         lags,
         needs,

@@ -129,7 +129,7 @@ fn simulate_takes_pty_and_inprocess() {
 }
 
 /// `--link pty` and `--link inprocess` run the same check in bench, and bench.json names
-/// the link `pty` either way.
+/// the link `pty` either way (in its `key`, since the pooled-seed bench).
 #[test]
 fn bench_takes_pty_and_inprocess() {
     for link in ["pty", "inprocess"] {
@@ -152,7 +152,7 @@ fn bench_takes_pty_and_inprocess() {
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap())
                 .unwrap();
-        assert_eq!(json["link"], "pty", "{link}");
+        assert_eq!(json["key"]["link"], "pty", "{link}");
         let _ = std::fs::remove_dir_all(&out);
     }
 }

@@ -81,3 +81,37 @@ fn a_report_near_the_limit_or_a_gross_slip_still_teaches_mu() {
         "{out:?}"
     );
 }
+
+#[test]
+fn creep_after_a_real_slip_lets_its_margin_relax_and_keeps_its_mu() {
+    // A gross slip at utilisation 0.95 raises the margin to 1.3 and lowers μ̂ to 0.95 μ.
+    // The load then settles at utilisation 0.5 under that belief, and the sensor reports
+    // creep for 3 s. Creep is no slip: the margin relaxes to the creep cap (it used to stay
+    // at 1.3 for as long as the creep did), and μ̂ keeps what the slip taught.
+    let cfg = config();
+    let mut c = Controller::<f64>::new(cfg).unwrap();
+    let f = 0.95 * cfg.mu * 5.0;
+    c.tick(&frame(0, f, 5.0, SlipSignal::None));
+    let out = c.tick(&frame(1, f, 5.0, SlipSignal::Gross));
+    assert_eq!(out.margin, 1.0 + MARGIN_STEP_GROSS);
+    let mu_hat = out.mu_estimate;
+    assert!(mu_hat < cfg.mu);
+    let f = 0.5 * mu_hat * 5.0;
+    let mut out = out;
+    for k in 2..3002 {
+        out = c.tick(&frame(k, f, 5.0, SlipSignal::Incipient));
+        assert!(out.margin <= 1.0 + MARGIN_STEP_GROSS, "{out:?}");
+        assert_eq!(out.mu_estimate, mu_hat, "tick {k}");
+    }
+    eprintln!(
+        "creep for 3 s after a gross slip: margin {:.4}, mu {:.4}",
+        out.margin, out.mu_estimate
+    );
+    assert!(
+        out.margin <= CREEP_MARGIN_MAX + 1e-3 && out.margin >= 1.0,
+        "{out:?}"
+    );
+    // The command: the load's need at safety 1.3 x the creep margin, under μ̂.
+    let need = 1.3 * CREEP_MARGIN_MAX * f / mu_hat;
+    assert!(out.command_n <= need * 1.005, "{} > {need}", out.command_n);
+}

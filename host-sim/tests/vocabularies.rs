@@ -129,7 +129,7 @@ fn simulate_takes_pty_and_inprocess() {
 }
 
 /// `--link pty` and `--link inprocess` run the same check in bench, and bench.json names
-/// the link `pty` either way.
+/// the link `pty` either way (in its `key`, since the pooled-seed bench).
 #[test]
 fn bench_takes_pty_and_inprocess() {
     for link in ["pty", "inprocess"] {

@@ -39,6 +39,12 @@
 //! close to 1 under the present belief (or a gross slip, which is the limit reached). If
 //! the true `μ` is so far below the belief that the contact creeps at a believed
 //! utilisation under 0.7, the gross slip that follows is what teaches the controller.
+//! Nor does creep hold up a margin that a real slip raised: once the slip is over, the
+//! sensor often goes on reporting creep at the now lower utilisation, and the margin, a
+//! guard for the moments after a slip, then relaxes to [`CREEP_MARGIN_MAX`] as it would
+//! to 1 in silence (it used to stay at the slip's value for as long as the creep lasted:
+//! 18 % more force in `tests/creep.rs`). `μ̂` keeps what the slip taught while the sensor
+//! reports anything; it relaxes only in silence.
 //!
 //! A signal that persists steps the margin and the estimate again only after
 //! [`REFRACTORY_S`]: the actuator needs that long to act on the first step, and the
@@ -259,6 +265,10 @@ impl<T: Real> SlipResponse<T> {
             SlipSignal::Incipient => T::of(MARGIN_STEP_INCIPIENT),
             SlipSignal::Gross => T::of(MARGIN_STEP_GROSS),
         };
+        let u = greater(self.peak_now, self.peak_before);
+        if signal == SlipSignal::Incipient && u < T::of(CREEP_UTILISATION) {
+            return self.creep(step);
+        }
         // A new episode once the margin has had its quiet time.
         if self.since_slip >= self.margin_quiet_ticks {
             self.episode_steps = 0;
@@ -269,18 +279,6 @@ impl<T: Real> SlipResponse<T> {
         }
         self.since_step = 0;
         self.pristine = false;
-        let u = greater(self.peak_now, self.peak_before);
-        if signal == SlipSignal::Incipient && u < T::of(CREEP_UTILISATION) {
-            // Creep: a little margin, no evidence about μ. (Comparisons, not `min`/`max`:
-            // on the Cortex-M4F those are calls.)
-            let raised = self.margin + step;
-            let cap = T::of(CREEP_MARGIN_MAX);
-            if self.margin < cap {
-                self.margin = if raised < cap { raised } else { cap };
-                return true;
-            }
-            return false;
-        }
         let margin = lesser(self.margin + step, T::of(MARGIN_MAX));
         let mut changed = margin > self.margin;
         self.margin = margin;
@@ -301,6 +299,31 @@ impl<T: Real> SlipResponse<T> {
             }
         }
         changed
+    }
+
+    /// A creep tick: a little margin, no evidence about μ. Creep is no slip, so it does
+    /// not hold up a margin that a slip raised: after the margin's quiet time it relaxes
+    /// toward [`CREEP_MARGIN_MAX`] as it would toward 1 on a quiet tick. `μ̂` keeps what a
+    /// slip taught while the sensor reports anything (it relaxes only on silence), and
+    /// the creep's ticks count toward that silence's quiet time. (Comparisons, not
+    /// `min`/`max`: on the Cortex-M4F those are calls.)
+    fn creep(&mut self, step: T) -> bool {
+        let cap = T::of(CREEP_MARGIN_MAX);
+        self.since_slip = self.since_slip.saturating_add(1);
+        if self.margin > cap {
+            if self.since_slip >= self.margin_quiet_ticks {
+                self.margin = self.margin + (cap - self.margin) * self.margin_relax_rate;
+            }
+            return false;
+        }
+        if self.since_step < self.refractory_ticks || !(self.margin < cap) {
+            return false;
+        }
+        self.since_step = 0;
+        self.pristine = false;
+        let raised = self.margin + step;
+        self.margin = if raised < cap { raised } else { cap };
+        true
     }
 
     fn relax(&mut self) {

@@ -801,6 +801,7 @@ fn an_aspect_the_start_up_cannot_sample_is_refused_by_name() {
         c_m_per_n_gamma: 5.820766091346741e-13,
         half_length_m: 0.23061767484992743,
         moment_range_nm: 33.9,
+        mode: Mode::Ellipse,
         ..ControllerConfig::default()
     };
     let e = Controller::<f32>::new(bad).unwrap_err();

@@ -56,9 +56,9 @@ fn creep_at_a_moderate_load_raises_the_margin_a_little_and_leaves_mu() {
             "{out:?}"
         );
         assert_eq!(out.mu_estimate, cfg.mu);
-        // The command: the load's need at safety 1.3 x the creep margin at most (table
+        // The command: the load's need at the safety factor x the creep margin at most (table
         // mode's interpolation is good to a few per mille).
-        let need = 1.3 * CREEP_MARGIN_MAX * u * 5.0;
+        let need = cfg.safety * CREEP_MARGIN_MAX * u * 5.0;
         assert!(out.command_n <= need * 1.005, "{} > {need}", out.command_n);
     }
 }
@@ -111,7 +111,7 @@ fn creep_after_a_real_slip_lets_its_margin_relax_and_keeps_its_mu() {
         out.margin <= CREEP_MARGIN_MAX + 1e-3 && out.margin >= 1.0,
         "{out:?}"
     );
-    // The command: the load's need at safety 1.3 x the creep margin, under μ̂.
-    let need = 1.3 * CREEP_MARGIN_MAX * f / mu_hat;
+    // The command: the load's need at the safety factor x the creep margin, under μ̂.
+    let need = cfg.safety * CREEP_MARGIN_MAX * f / mu_hat;
     assert!(out.command_n <= need * 1.005, "{} > {need}", out.command_n);
 }

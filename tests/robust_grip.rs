@@ -5,6 +5,7 @@
 //! to exactly the controller that never saw a slip.
 
 use proptest::prelude::*;
+use softgrip::controller::actuator::UNTOLD_LAG_S;
 use softgrip::controller::lead::RATE_DEADBAND_N_PER_S;
 use softgrip::controller::slip::{
     MARGIN_MAX, MARGIN_QUIET_S, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
@@ -63,7 +64,8 @@ proptest! {
         table in any::<bool>(),
     ) {
         let mode = if table { Mode::Table } else { Mode::Ellipse };
-        let base = ControllerConfig { mode, ..ControllerConfig::default() };
+        // Told an ideal actuator (a lag of one tick, under the lead's floor): never led.
+        let base = ControllerConfig { mode, actuator_lag_s: 1e-3, ..ControllerConfig::default() };
         let mut plain = Controller::<f64>::new(base).unwrap();
         let mut ahead = Controller::<f64>::new(ControllerConfig {
             actuator_lag_s: lag_ms * 1e-3,
@@ -164,8 +166,15 @@ fn on_a_ramp_the_command_runs_one_lag_ahead() {
     let want = (rate - RATE_DEADBAND_N_PER_S) * lag;
     eprintln!("ramp: lead {lead:.4} N, expected about {want:.4} N");
     assert!((lead - want).abs() < 0.05 * want, "{lead}");
-    let (plain, _) = ramp(ControllerConfig::default());
+    // Told an ideal actuator (one tick): no lead.
+    let (plain, _) = ramp(lagging(1e-3, f64::INFINITY));
     assert_eq!(plain.command_n, plain.required_n);
+    // Not told: the untold prior leads the ramp as a 20 ms lag would, until samples of
+    // the actuator say otherwise (a 5 N/s ramp moves the command too slowly to be one).
+    let (untold, _) = ramp(ControllerConfig::default());
+    let want = (rate - RATE_DEADBAND_N_PER_S) * UNTOLD_LAG_S;
+    let lead = untold.command_n - untold.required_n;
+    assert!((lead - want).abs() < 0.05 * want, "untold: {lead} {want}");
 }
 
 /// A slew-limited actuator gets a longer horizon, `τ/(1 − Ṅ/r)`: at `r = 2·Ṅ`, twice.

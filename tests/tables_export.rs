@@ -132,8 +132,12 @@ fn wrong_versions_configurations_and_values_are_named() {
     b[0] = b'X';
     assert_eq!(Blob::parse(&b).unwrap_err(), BlobError::BadMagic);
 
-    // Tables that do not fit the configuration they claim.
-    let cfg = ControllerConfig::default();
+    // Tables that do not fit the configuration they claim (ellipse mode's, which have no
+    // table-mode radii).
+    let cfg = ControllerConfig {
+        mode: Mode::Ellipse,
+        ..ControllerConfig::default()
+    };
     let c = Controller::<f32>::new(cfg).unwrap();
     let t = c.capacity().tables();
     let other = ControllerConfig {

@@ -299,7 +299,8 @@ fn required_force_errors_name_the_flags_typed() {
             "--ft",
         ),
         (
-            vec!["--mu", "0.8", "--length", "1e-300"],
+            // Ellipse mode's inscribed ellipse needs the aspect sampled.
+            vec!["--mu", "0.8", "--length", "1e-300", "--mode", "ellipse"],
             "--length",
             "--aspect",
         ),

@@ -57,7 +57,8 @@ fn a_config_file_equals_the_flags_and_the_flags_win() {
     let by_file = run(&[&LOAD[..], &["json", "--config", file.to_str().unwrap()]].concat());
     assert_eq!(by_flags.0, 0, "{}", by_flags.2);
     assert_eq!(by_flags.1, by_file.1);
-    // A flag over the file.
+    // A flag over the file: back to the default safety factor.
+    let default_safety = ControllerConfig::DEFAULT.safety.to_string();
     let over = run(&[
         &LOAD[..],
         &[
@@ -65,7 +66,7 @@ fn a_config_file_equals_the_flags_and_the_flags_win() {
             "--config",
             file.to_str().unwrap(),
             "--safety",
-            "1.3",
+            &default_safety,
         ],
     ]
     .concat());

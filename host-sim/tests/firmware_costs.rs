@@ -426,7 +426,11 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
         host_sim::link::qemu::firmware("prebuilt-tables"),
         host_sim::link::qemu::firmware("solve-to-cap"),
     );
-    let ellipse = ControllerConfig::default();
+    // Both modes at the default's other settings.
+    let ellipse = ControllerConfig {
+        mode: Mode::Ellipse,
+        ..ControllerConfig::default()
+    };
     let table = ControllerConfig {
         mode: Mode::Table,
         ..ControllerConfig::default()

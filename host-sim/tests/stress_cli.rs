@@ -16,6 +16,9 @@ use host_sim::sim::scene::Scene;
 use host_sim::sim::truth::Truth;
 use std::process::Command;
 
+/// The default safety factor, which these runs take.
+const SAFETY: f64 = softgrip::controller::ControllerConfig::DEFAULT.safety;
+
 fn run(cmd: &str, args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
         .arg(cmd)
@@ -368,7 +371,7 @@ fn required_force_at_the_corners_of_the_domain() {
                                 _ => (0.07, 0.07),
                             };
                             assert!(
-                                n >= slip * (1.0 - rel) && n <= 1.3 * slip * (1.0 + rel_up),
+                                n >= slip * (1.0 - rel) && n <= SAFETY * slip * (1.0 + rel_up),
                                 "{case}: {v}"
                             );
                             let ft: f64 = ft.parse().unwrap();
@@ -393,7 +396,7 @@ fn required_force_at_the_corners_of_the_domain() {
                                 assert!(over >= -1e-6, "{case}: {v}");
                             }
                             if mn == 0.0 && mode == "ellipse" && math == "libm" {
-                                let want = 1.3 * ft / (0.8 * ax_f);
+                                let want = SAFETY * ft / (0.8 * ax_f);
                                 // f32 loses accuracy below ~1e-8 N on the disc, where
                                 // φ = R²(N² − F²) − M² reaches f32's subnormals: up to
                                 // 5.6e-3 at 1.6e-9 N, always high (tests/stress.rs).
@@ -407,12 +410,15 @@ fn required_force_at_the_corners_of_the_domain() {
                             }
                             if n > 1e-9 && n < 1e6 && (ft > 0.0 || mn > 0.0) {
                                 let u = num(&v, "utilisation");
+                                // An f32 solve stopped by its iteration cap is up to
+                                // 0.14 % high (above), its utilisation as much low.
                                 let tol = match (precision, math) {
                                     (_, "micromath") => 0.07,
                                     ("f32", _) if n < 5e-9 => 1e-2,
+                                    ("f32", _) => 2e-3,
                                     _ => 1e-5,
                                 };
-                                assert!((u * 1.3 - 1.0).abs() < tol, "{case}: {v}");
+                                assert!((u * SAFETY - 1.0).abs() < tol, "{case}: {v}");
                             }
                         }
                     }

@@ -29,9 +29,10 @@
 //!
 //! `τ` and `r` are what the controller has identified of its actuator
 //! ([`actuator`](super::actuator)), starting from `actuator_lag_s` and
-//! `actuator_slew_n_per_s` as priors: an actuator nobody described gets its lead once the
-//! first rise of the load has shown its lag. While the identified lag is 0 (an ideal
-//! actuator, or none seen yet) the target is `N_req`, bit for bit.
+//! `actuator_slew_n_per_s` as priors: an actuator nobody described is led as a 20 ms
+//! lag until the first rise of the load has shown its own. While the identified lag is 0
+//! (an ideal actuator: one told, or one whose samples show it follows within the
+//! identifier's floor) the target is `N_req`, bit for bit.
 //!
 //! **Oscillating loads.** For a load that swings up and down faster than the command may
 //! fall (`fall_rate_n_per_s`), leading every rise would ratchet the command up to the

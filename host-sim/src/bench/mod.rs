@@ -19,6 +19,7 @@
 //! ([`write_outputs`]): so a merge of shards, which has the same results, writes the same
 //! bytes.
 
+pub mod default_choice;
 pub mod families;
 pub mod lab;
 pub mod onset_table;
@@ -298,8 +299,19 @@ pub fn write_outputs(
         checks.push(check);
         pooled.extend(rows);
     }
+    let choice = default_choice::choose(&opts.sweeps, groups);
+    if let Some(c) = &choice {
+        show(&format!("{}\n", default_choice::lines(c)));
+    }
     let json = opts.out.join("bench.json");
-    report::write_json(&json, &shard::Key::of(opts), &pooled, &per_seed, &checks)
+    let parts = report::JsonParts {
+        key: &shard::Key::of(opts),
+        rows: &pooled,
+        per_seed: &per_seed,
+        dominance: &checks,
+        default_choice: choice.as_ref(),
+    };
+    report::write_json(&json, &parts)
         .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))
 }
 

@@ -53,21 +53,31 @@ pub fn family_table(family: &str, rows: &[Row]) -> String {
     s
 }
 
+/// What `bench.json` holds.
+pub struct JsonParts<'a> {
+    /// The run's options.
+    pub key: &'a Key,
+    /// The rows pooled over the seeds.
+    pub rows: &'a [Row],
+    /// The rows of each seed.
+    pub per_seed: &'a [Row],
+    /// The dominance checks.
+    pub dominance: &'a [Dominance],
+    /// softgrip's default as the run would choose it (`null` without all five families
+    /// and both softgrip modes).
+    pub default_choice: Option<&'a super::default_choice::Choice>,
+}
+
 /// Writes `bench.json`: the run's options (`key`: plant, seeds, trials, families,
-/// sweeps, link...), the `rows` pooled over the seeds, the `per_seed` rows, and the
-/// `dominance` checks.
-pub fn write_json(
-    path: &Path,
-    key: &Key,
-    rows: &[Row],
-    per_seed: &[Row],
-    dominance: &[Dominance],
-) -> std::io::Result<()> {
+/// sweeps, link...), the `rows` pooled over the seeds, the `per_seed` rows, the
+/// `dominance` checks and the `default_choice`.
+pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
     let v = serde_json::json!({
-        "key": key,
-        "rows": rows,
-        "per_seed": per_seed,
-        "dominance": dominance,
+        "key": parts.key,
+        "rows": parts.rows,
+        "per_seed": parts.per_seed,
+        "dominance": parts.dominance,
+        "default_choice": parts.default_choice,
     });
     let text = serde_json::to_string_pretty(&v).map_err(std::io::Error::other)?;
     std::fs::write(path, text + "\n")

@@ -70,10 +70,16 @@ impl ControllerKind {
         Self::SlipServo,
     ];
 
+    /// The softgrip mode that is not the default's: `softgrip` runs the default mode.
+    pub const OTHER_MODE: Self = match ControllerConfig::DEFAULT.mode {
+        Mode::Ellipse => Self::SoftgripTable,
+        Mode::Table => Self::SoftgripEllipse,
+    };
+
     /// The controllers `--controller all` runs (softgrip's default mode is `softgrip`).
     pub const ALL: [Self; 7] = [
         Self::Softgrip,
-        Self::SoftgripTable,
+        Self::OTHER_MODE,
         Self::Constant,
         Self::Coulomb,
         Self::Box,
@@ -183,7 +189,7 @@ impl ValueEnum for ControllerChoice {
     fn to_possible_value(&self) -> Option<PossibleValue> {
         match self {
             Self::All => Some(PossibleValue::new("all").help(
-                "softgrip, softgrip-table and every baseline (not softgrip-ellipse, the same as \
+                "softgrip, softgrip-ellipse and every baseline (not softgrip-table, the same as \
                  softgrip in the default mode)",
             )),
             Self::One(k) => k.to_possible_value(),

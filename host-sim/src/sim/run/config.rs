@@ -4,7 +4,7 @@
 use crate::config::names::scene_key;
 use crate::input::{config_reason, short_num};
 use crate::sim::scene::{ControllerSettings, Finger, Scene, SceneError};
-use softgrip::controller::{Checked, ControllerConfig, Mode};
+use softgrip::controller::{Checked, ControllerConfig};
 use softgrip::{BuildError, ConfigError, RangeOverflow};
 
 /// softgrip's configuration for a scene, checked: the finger as the scene gives it
@@ -16,7 +16,7 @@ pub fn controller_config(scene: &Scene) -> Result<Checked, SceneError> {
 
 /// The configuration a finger and tick rate give before the `[controller]` table: the
 /// finger's shape, `k`, `mu` (the true one), contact law and half-length, the tick period,
-/// ellipse mode, and the defaults for the rest.
+/// and the defaults for the rest (the default mode among them).
 pub fn finger_base(f: &Finger, tick_hz: f64) -> ControllerConfig {
     ControllerConfig {
         mu: f.mu,
@@ -27,7 +27,6 @@ pub fn finger_base(f: &Finger, tick_hz: f64) -> ControllerConfig {
         gamma: f.gamma,
         half_length_m: f.half_length_m,
         tick_period_s: 1.0 / tick_hz,
-        mode: Mode::Ellipse,
         ..ControllerConfig::default()
     }
 }

@@ -1,0 +1,233 @@
+//! softgrip's default mode and safety factor are the ones the rule of
+//! `bench::default_choice` picks from the committed held-out run (docs/bench/heldout/),
+//! whose seeds the published run does not score on; and the rule itself picks, on a
+//! small hand-made run, what it says it picks.
+
+use host_sim::bench::default_choice::{choose, Choice};
+use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
+use host_sim::bench::FamilyResults;
+use host_sim::sim::controllers::ControllerKind;
+use serde_json::Value;
+use softgrip::controller::ControllerConfig;
+use std::path::Path;
+
+fn json(rel: &str) -> Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{rel}: {e}"));
+    serde_json::from_str(&text).unwrap()
+}
+
+fn seeds(v: &Value) -> Vec<u64> {
+    v["key"]["seeds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_u64().unwrap())
+        .collect()
+}
+
+#[test]
+fn the_default_is_the_held_out_runs_choice() {
+    let held = json("docs/bench/heldout/bench.json");
+    let published = json("docs/bench/bench.json");
+    let (h, p) = (seeds(&held), seeds(&published));
+    assert!(
+        h.iter().all(|s| !p.contains(s)),
+        "the held-out seeds {h:?} must not be the published run's {p:?}"
+    );
+    assert_eq!(held["key"]["plant"], "brush");
+    assert_eq!(held["key"]["hard"], false);
+    let chosen = &held["default_choice"]["chosen"];
+    let mode = ControllerKind::of_mode(ControllerConfig::DEFAULT.mode).name();
+    assert_eq!(
+        (
+            chosen["controller"].as_str().unwrap(),
+            chosen["safety"].as_f64().unwrap()
+        ),
+        (mode, ControllerConfig::DEFAULT.safety),
+        "ControllerConfig::DEFAULT is not the held-out run's choice: {}",
+        held["default_choice"]
+    );
+}
+
+const BLOCK: (&str, &str) = ("<!-- default-choice:begin", "<!-- default-choice:end -->");
+
+/// docs/bench.md's block on the default, from the held-out run's `default_choice`.
+fn render(held: &Value) -> String {
+    let c = &held["default_choice"];
+    let seeds: Vec<String> = seeds(held).iter().map(u64::to_string).collect();
+    let cands = c["candidates"].as_array().unwrap();
+    let find = |mode: &str, s: f64| {
+        cands
+            .iter()
+            .find(|x| x["controller"] == mode && (x["safety"].as_f64().unwrap() - s).abs() < 1e-9)
+    };
+    let least_safe = |mode: &str| {
+        cands
+            .iter()
+            .filter(|x| x["controller"] == mode && x["drops"] == c["safest_drops"])
+            .map(|x| x["safety"].as_f64().unwrap())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut out = format!(
+        "{} (generated from docs/bench/heldout/bench.json by \
+         host-sim/tests/default_choice.rs; SOFTGRIP_WRITE_DOCS=1 rewrites it) -->\n",
+        BLOCK.0
+    );
+    out += &format!(
+        "Held-out run: seeds {}, {} trials a family and seed, {} trials on the aims. The \
+         fewest drops on them, {}, come from ellipse mode at {} and table mode at {}; \
+         settings within {:.1} drops count as safe, and the cheapest of them is **{} at \
+         {}**: {} drops, {:.3} × the oracle's force (geometric mean over the five \
+         families).\n\n",
+        seeds.join(", "),
+        held["key"]["trials"],
+        c["aim_trials"],
+        c["safest_drops"],
+        least_safe("softgrip-ellipse"),
+        least_safe("softgrip-table"),
+        c["safe_drops_max"].as_f64().unwrap(),
+        c["chosen"]["controller"].as_str().unwrap(),
+        c["chosen"]["safety"],
+        c["chosen"]["drops"],
+        c["chosen"]["force_over_oracle"].as_f64().unwrap(),
+    );
+    out += "| safety | ellipse: drops, force/oracle | table: drops, force/oracle |\n";
+    out += "| ---: | ---: | ---: |\n";
+    for k in 0..=8 {
+        let s = 1.2 + 0.05 * f64::from(k);
+        let cell = |mode: &str| {
+            find(mode, s).map_or("–".to_string(), |x| {
+                format!(
+                    "{}, {:.3}",
+                    x["drops"],
+                    x["force_over_oracle"].as_f64().unwrap()
+                )
+            })
+        };
+        out += &format!(
+            "| {:.2} | {} | {} |\n",
+            s,
+            cell("softgrip-ellipse"),
+            cell("softgrip-table")
+        );
+    }
+    out + BLOCK.1
+}
+
+#[test]
+fn the_bench_page_states_the_held_out_choice() {
+    let held = json("docs/bench/heldout/bench.json");
+    let want = render(&held);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/bench.md");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let start = text
+        .find(BLOCK.0)
+        .expect("docs/bench.md: no default-choice marker");
+    let end = text[start..].find(BLOCK.1).expect("no end marker") + start + BLOCK.1.len();
+    if text[start..end] == want {
+        return;
+    }
+    if std::env::var("SOFTGRIP_WRITE_DOCS").is_ok_and(|v| v == "1") {
+        let new = format!("{}{want}{}", &text[..start], &text[end..]);
+        std::fs::write(&path, new).unwrap();
+        return;
+    }
+    panic!(
+        "docs/bench.md's default-choice block is not the held-out run's \
+         (SOFTGRIP_WRITE_DOCS=1 writes it):\n--- page\n{}\n--- run\n{want}",
+        &text[start..end]
+    );
+}
+
+const VALUES: [f64; 2] = [1.0, 1.5];
+
+fn sweeps() -> Vec<Sweep> {
+    [
+        ControllerKind::SoftgripEllipse,
+        ControllerKind::SoftgripTable,
+    ]
+    .into_iter()
+    .map(|controller| Sweep {
+        controller,
+        knob: "safety",
+        values: &VALUES,
+        default: 1.0,
+    })
+    .collect()
+}
+
+/// Ten holdable trials per family (mu-mismatch's all with a sensor); `drops[j]` of the
+/// first trials of `shake` dropped by setting `j` (ellipse 1.0, 1.5, table 1.0, 1.5), and
+/// each setting's force over the oracle `force[j]` on every trial.
+fn run(drops: [usize; 4], force: [f64; 4]) -> Option<Choice> {
+    let families = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
+    let groups: Vec<FamilyResults> = families
+        .into_iter()
+        .map(|family| FamilyResults {
+            family,
+            seed: 1,
+            results: (0..10)
+                .map(|i| TrialResult {
+                    true_mu: 1.0,
+                    mu_ratio: 1.0,
+                    sensor: true,
+                    holdable: true,
+                    oracle_mean_n: 2.0,
+                    runs: (0..4)
+                        .map(|j| RunRow {
+                            dropped: family == "shake" && i < drops[j],
+                            slip_events: 0,
+                            slip_distance_m: 0.0,
+                            mean_force_n: 2.0 * force[j],
+                            peak_force_n: 2.0 * force[j],
+                        })
+                        .collect(),
+                })
+                .collect(),
+        })
+        .collect();
+    choose(&sweeps(), &groups)
+}
+
+#[test]
+fn the_rule_takes_the_cheapest_setting_as_safe_as_the_safest() {
+    // 50 trials on the aims; the safest drops none, and the Wilson bound of 0 in 50
+    // (7.1 %) lets 3 drops count as safe, not 4.
+    let c = run([3, 0, 1, 0], [1.0, 1.5, 0.98, 1.45]).unwrap();
+    assert_eq!(c.aim_trials, 50);
+    assert_eq!(c.safest_drops, 0);
+    assert!(
+        (c.safe_drops_max - 3.56).abs() < 0.01,
+        "{}",
+        c.safe_drops_max
+    );
+    assert_eq!(
+        (c.chosen.controller.as_str(), c.chosen.safety),
+        ("softgrip-table", 1.0)
+    );
+    // Four drops are not as safe: the cheapest of the rest.
+    let c = run([4, 0, 4, 0], [1.0, 1.5, 0.98, 1.45]).unwrap();
+    assert_eq!(
+        (c.chosen.controller.as_str(), c.chosen.safety),
+        ("softgrip-table", 1.5)
+    );
+    let c = run([3, 0, 4, 0], [1.0, 1.5, 0.98, 1.45]).unwrap();
+    assert_eq!(
+        (c.chosen.controller.as_str(), c.chosen.safety),
+        ("softgrip-ellipse", 1.0)
+    );
+}
+
+#[test]
+fn the_rule_needs_every_family() {
+    let mut groups = Vec::new();
+    for family in ["lift-hold", "shake", "twist", "faults"] {
+        groups.push(FamilyResults {
+            family,
+            seed: 1,
+            results: Vec::new(),
+        });
+    }
+    assert!(choose(&sweeps(), &groups).is_none());
+}

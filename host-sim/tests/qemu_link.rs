@@ -118,10 +118,11 @@ fn the_prebuilt_tables_firmware_needs_no_precomputation() {
         mode: Mode::Table,
         ..ControllerConfig::default()
     };
-    let Reply::Configured(Err(e)) = link
-        .exchange(&Request::Configure(ControllerConfig::default()))
-        .unwrap()
-    else {
+    let ellipse = ControllerConfig {
+        mode: Mode::Ellipse,
+        ..ControllerConfig::default()
+    };
+    let Reply::Configured(Err(e)) = link.exchange(&Request::Configure(ellipse)).unwrap() else {
         panic!("an ellipse-mode configuration must be refused")
     };
     assert_eq!(e.param.as_str(), "tables");

@@ -32,7 +32,7 @@ fn a_simulate_run_builds_each_controller_once_per_scene() {
         // The two scenes' controllers differ (otherwise the second scene's would be the
         // first's, kept: one precomputation for both).
         let text = match name {
-            "twist" => text.replace("[controller]\n", "[controller]\nsafety = 1.5\n"),
+            "twist" => text.replace("[controller]\n", "[controller]\nsafety = 1.6\n"),
             _ => text,
         };
         std::fs::write(scenes.join(format!("{name}.toml")), text).unwrap();

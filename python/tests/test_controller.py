@@ -13,7 +13,7 @@ def test_defaults_are_the_rust_defaults():
     d = softgrip.default_config()
     assert set(d) == set(softgrip.CONFIG_FIELDS)
     assert d["mu"] == 0.8 and d["shape"] == "rect" and d["k"] == 2.0 and d["skew"] is None
-    assert d["safety"] == 1.4 and d["n_min_n"] == 0.2 and d["n_max_n"] == 20.0
+    assert d["safety"] == 1.5 and d["n_min_n"] == 0.2 and d["n_max_n"] == 20.0
     assert d["rise_rate_n_per_s"] == 400.0 and d["fall_rate_n_per_s"] == 20.0
     assert d["mode"] == "table" and d["force_nodes"] == 48
     assert math.isinf(d["actuator_slew_n_per_s"])
@@ -71,8 +71,10 @@ def test_rise_and_fall_rate_limits():
 
 
 def test_slip_raises_the_margin_and_jumps():
-    # Told an ideal actuator (a lag of one tick): no lead, so the command is N_req.
-    c = softgrip.Controller(actuator_lag_s=0.001)
+    # Told an ideal actuator (a lag of one tick): no lead, so the command is N_req. At
+    # safety 1.3 the held load's utilisation (1/1.3) is above the creep threshold (0.7),
+    # so an incipient report is slip, not creep.
+    c = softgrip.Controller(actuator_lag_s=0.001, safety=1.3)
     t = 0.0
     for _ in range(50):
         t += DT

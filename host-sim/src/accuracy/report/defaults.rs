@@ -368,14 +368,14 @@ fn mode(c: &Ctx) -> Option<String> {
         "no under-ask".to_string()
     };
     Some(format!(
-        "It is the cheapest tick ({} ns; table {} ns, {:.1}×) but the least accurate rule: \
+        "Ellipse mode is the cheapest tick ({} ns; table {} ns, {:.1}×) but the least accurate rule: \
          {ellipse_side}; table mode is within {} ({table_under}). The default ellipse \
          configuration is {} the tick front and the default table configuration is {} it \
          (configurations running the same tick code tie within timing noise, so which of \
          them lands on the front is partly chance).{exact_text} **The numbers favour table \
          mode** wherever its tick fits the budget ({target_ticks}; budgets 5 000 and \
          2 000): the same safety for less force. Table mode is the default, at safety \
-         1.4, as the bench chose it on held-out seeds (docs/bench.md, \"The default\"); \
+         1.5, as the bench chose it on held-out seeds (docs/bench.md, \"The default\"); \
          ellipse mode is the cheaper tick, whose error is on the safe side, for a part \
          whose budget has no room for table mode's.",
         time(me.tick_ns),

@@ -45,12 +45,12 @@ fn a_config_file_equals_the_flags_and_the_flags_win() {
     let file = tmp("rule.toml");
     std::fs::write(
         &file,
-        "mu = 0.6\nc_m_per_n_gamma = 3e-3\nsafety = 1.5\nmode = \"table\"\n",
+        "mu = 0.6\nc_m_per_n_gamma = 3e-3\nsafety = 1.7\nmode = \"table\"\n",
     )
     .unwrap();
     let by_flags = run(&[
         &LOAD[..],
-        &["json", "--mu", "0.6", "--c", "3e-3", "--safety", "1.5"],
+        &["json", "--mu", "0.6", "--c", "3e-3", "--safety", "1.7"],
         &["--mode", "table"],
     ]
     .concat());

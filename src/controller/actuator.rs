@@ -96,8 +96,8 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
 /// take to follow a step of force (tens of milliseconds). Without it the first lift
 /// through a slow actuator nobody described starts unled from `N_min`: on the bench's
 /// `shake` family (untold 5–30 ms actuators) that lift-off slip dropped 5 of 30 trials
-/// at the default margin on a held-out seed (101), 1 of 30 with it (`bench --family
-/// shake --seeds 101 --trials 30`). The cost through an ideal actuator is the lead of a
+/// in ellipse mode at safety 1.3 on a held-out seed (101), 1 of 30 with it (`bench
+/// --family shake --seeds 101 --trials 30`). The cost through an ideal actuator is the lead of a
 /// 20 ms lag on each rise of the load that moves the command slower than the
 /// identifier's [`RATE_MIN_N_PER_S`]: 0.3 % more force on the `lift-hold` family.
 pub const UNTOLD_LAG_S: f64 = 0.02;

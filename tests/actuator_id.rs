@@ -242,6 +242,27 @@ fn no_lead(mut act: Actuator, seconds: f64, from_s: f64, load: impl Fn(f64) -> f
     (worst, worst_late)
 }
 
+/// [`lift`], then from 0.6 s a shake of `amplitude_n` at `hz`.
+fn lift_then_shake(amplitude_n: f64, hz: f64) -> impl Fn(f64) -> f64 + Copy {
+    move |t: f64| {
+        let shake = if t > 0.6 {
+            amplitude_n * (std::f64::consts::TAU * hz * (t - 0.6)).sin()
+        } else {
+            0.0
+        };
+        lift(t) + shake
+    }
+}
+
+/// A 25 ms actuator, not slew-limited, starting from no force.
+fn untold_25ms() -> Actuator {
+    Actuator {
+        tau_s: 0.025,
+        slew: f64::INFINITY,
+        force_n: 0.0,
+    }
+}
+
 #[test]
 fn an_untold_actuator_is_led_through_a_lift_and_a_shake() {
     // 25 ms, not told. The first lift shows the lag; through the 8 Hz shake that follows,
@@ -249,19 +270,8 @@ fn an_untold_actuator_is_led_through_a_lift_and_a_shake() {
     // the run it falls short of the load's need by under half as much as the same rule
     // with no lead at all (a controller that measures its own commands back, so sees an
     // ideal actuator).
-    let load = |t: f64| {
-        let shake = if t > 0.6 {
-            2.0 * (std::f64::consts::TAU * 8.0 * (t - 0.6)).sin()
-        } else {
-            0.0
-        };
-        lift(t) + shake
-    };
-    let act = || Actuator {
-        tau_s: 0.025,
-        slew: f64::INFINITY,
-        force_n: 0.0,
-    };
+    let load = lift_then_shake(2.0, 8.0);
+    let act = untold_25ms;
     let told = run(lagging(0.025, f64::INFINITY), act(), 1.6, load);
     let untold = run(lagging(0.0, f64::INFINITY), act(), 1.6, load);
     let (worst, worst_late) = no_lead(act(), 1.6, 0.6, load);
@@ -332,19 +342,8 @@ fn an_untold_actuator_holds_a_five_hz_shake() {
     // force falls below N_slip by no more than the sensor's noise, and in the shake never;
     // the rule with no lead falls below it by tenths of a newton, in the lift and in the
     // shake.
-    let load = |t: f64| {
-        let shake = if t > 0.6 {
-            3.0 * (std::f64::consts::TAU * 5.0 * (t - 0.6)).sin()
-        } else {
-            0.0
-        };
-        lift(t) + shake
-    };
-    let act = || Actuator {
-        tau_s: 0.025,
-        slew: f64::INFINITY,
-        force_n: 0.0,
-    };
+    let load = lift_then_shake(3.0, 5.0);
+    let act = untold_25ms;
     let untold = run(lagging(0.0, f64::INFINITY), act(), 1.6, load);
     let told = run(lagging(0.025, f64::INFINITY), act(), 1.6, load);
     let (blind_all, blind_after) = no_lead(act(), 1.6, 0.15, load);

@@ -11,12 +11,11 @@
 //! and printed tables into docs/bench/, then `SOFTGRIP_WRITE_DOCS=1 cargo test --release
 //! -p host-sim --test bench_claims` rewrites the blocks.
 
+mod common;
+
 use serde_json::Value;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-
-/// The tests read the pages that others of them may rewrite (`SOFTGRIP_WRITE_DOCS=1`).
-static PAGE_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 const CLAIMS: (&str, &str) = ("<!-- bench-claims:begin", "<!-- bench-claims:end -->");
 const RESULTS: (&str, &str) = ("<!-- bench-results:begin", "<!-- bench-results:end -->");
@@ -460,45 +459,16 @@ fn render_results(b: &Bench) -> String {
     s + RESULTS.1
 }
 
-fn check_block(page: &str, markers: (&str, &str), want: &str) -> Result<(), String> {
-    let _page = PAGE_LOCK.lock().unwrap_or_else(|e| e.into_inner());
-    let path = root().join(page);
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{page}: {e}"))?;
-    let start = text
-        .find(markers.0)
-        .ok_or_else(|| format!("{page}: no `{}` marker", markers.0))?;
-    let end = text[start..]
-        .find(markers.1)
-        .ok_or_else(|| format!("{page}: no `{}` marker", markers.1))?
-        + start
-        + markers.1.len();
-    if &text[start..end] == want {
-        return Ok(());
-    }
-    if std::env::var("SOFTGRIP_WRITE_DOCS").is_ok_and(|v| v == "1") {
-        let new = format!("{}{want}{}", &text[..start], &text[end..]);
-        std::fs::write(&path, new).map_err(|e| format!("{page}: {e}"))?;
-        eprintln!("{page}: rewritten from docs/bench/");
-        return Ok(());
-    }
-    Err(format!(
-        "{page}: the block between the `{}` markers is not what docs/bench/ gives \
-         (SOFTGRIP_WRITE_DOCS=1 writes it):\n--- page\n{}\n--- docs/bench/\n{want}",
-        markers.0,
-        &text[start..end]
-    ))
-}
-
 #[test]
 fn the_readme_claim_is_the_published_benchmark_run() {
     let b = load();
-    check_block("README.md", CLAIMS, &render_claims(&b)).unwrap();
+    common::check_block("README.md", CLAIMS, &render_claims(&b), "docs/bench/").unwrap();
 }
 
 #[test]
 fn the_bench_page_results_are_the_published_benchmark_run() {
     let b = load();
-    check_block("docs/bench.md", RESULTS, &render_results(&b)).unwrap();
+    common::check_block("docs/bench.md", RESULTS, &render_results(&b), "docs/bench/").unwrap();
 }
 
 /// The published run pools at least three seeds on the brush plant, with every family

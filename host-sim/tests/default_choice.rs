@@ -3,6 +3,8 @@
 //! whose seeds the published run does not score on; and the rule itself picks, on a
 //! small hand-made run, what it says it picks.
 
+mod common;
+
 use host_sim::bench::default_choice::{choose, Choice};
 use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
 use host_sim::bench::FamilyResults;
@@ -118,26 +120,13 @@ fn render(held: &Value) -> String {
 #[test]
 fn the_bench_page_states_the_held_out_choice() {
     let held = json("docs/bench/heldout/bench.json");
-    let want = render(&held);
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/bench.md");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let start = text
-        .find(BLOCK.0)
-        .expect("docs/bench.md: no default-choice marker");
-    let end = text[start..].find(BLOCK.1).expect("no end marker") + start + BLOCK.1.len();
-    if text[start..end] == want {
-        return;
-    }
-    if std::env::var("SOFTGRIP_WRITE_DOCS").is_ok_and(|v| v == "1") {
-        let new = format!("{}{want}{}", &text[..start], &text[end..]);
-        std::fs::write(&path, new).unwrap();
-        return;
-    }
-    panic!(
-        "docs/bench.md's default-choice block is not the held-out run's \
-         (SOFTGRIP_WRITE_DOCS=1 writes it):\n--- page\n{}\n--- run\n{want}",
-        &text[start..end]
-    );
+    common::check_block(
+        "docs/bench.md",
+        BLOCK,
+        &render(&held),
+        "docs/bench/heldout/",
+    )
+    .unwrap();
 }
 
 const VALUES: [f64; 2] = [1.0, 1.5];

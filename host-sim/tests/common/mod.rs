@@ -1,5 +1,5 @@
-//! What the QEMU tests share: whether QEMU and the firmware they need are there. Each test
-//! binary uses part of it.
+//! What the tests share: whether QEMU and the firmware they need are there, and the
+//! check of a generated block of a page. Each test binary uses part of it.
 #![allow(dead_code)]
 
 use host_sim::link::qemu;
@@ -24,4 +24,46 @@ pub fn qemu_for(variants: &[&str]) -> Option<PathBuf> {
 /// QEMU's directory and the firmware of `variant`, if both are there (see [`qemu_for`]).
 pub fn qemu_and_firmware(variant: &str) -> Option<(PathBuf, PathBuf)> {
     qemu_for(&[variant]).map(|q| (q, qemu::firmware(variant)))
+}
+
+/// The tests of one binary read the pages that others of them may rewrite.
+static PAGE_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Checks that the block of `page` (a path from the repository's root) between the
+/// `markers` is `want`, generated from `source`; with `SOFTGRIP_WRITE_DOCS=1` rewrites it
+/// instead. The error shows both blocks.
+pub fn check_block(
+    page: &str,
+    markers: (&str, &str),
+    want: &str,
+    source: &str,
+) -> Result<(), String> {
+    let _page = PAGE_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(page);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{page}: {e}"))?;
+    let start = text
+        .find(markers.0)
+        .ok_or_else(|| format!("{page}: no `{}` marker", markers.0))?;
+    let end = text[start..]
+        .find(markers.1)
+        .ok_or_else(|| format!("{page}: no `{}` marker", markers.1))?
+        + start
+        + markers.1.len();
+    if &text[start..end] == want {
+        return Ok(());
+    }
+    if std::env::var("SOFTGRIP_WRITE_DOCS").is_ok_and(|v| v == "1") {
+        let new = format!("{}{want}{}", &text[..start], &text[end..]);
+        std::fs::write(&path, new).map_err(|e| format!("{page}: {e}"))?;
+        eprintln!("{page}: rewritten from {source}");
+        return Ok(());
+    }
+    Err(format!(
+        "{page}: the block between the `{}` markers is not what {source} gives \
+         (SOFTGRIP_WRITE_DOCS=1 writes it):\n--- page\n{}\n--- {source}\n{want}",
+        markers.0,
+        &text[start..end]
+    ))
 }

@@ -208,8 +208,15 @@ proptest! {
     ///   along the sweep, so the region it bounds is not "down-closed": a larger load
     ///   component can lie inside where a smaller one does not, and `N_slip` falls. Measured
     ///   over 36 000 loads on 3000 random skewed configurations (`α` up to 100): by up to
-    ///   3.5 % inside the grid (disc, k = 1.2, Δ/a = 0.95, α = 16) and 6.1 % above it; 1.7 %
-    ///   already for `α` in 2–6; never for `α ≤ 2` (the paper's 1.1). 10 % allowed.
+    ///   3.5 % inside the grid (disc, k = 1.2, Δ/a = 0.95, α = 16); 1.7 % already for `α`
+    ///   in 2–6; never for `α ≤ 2` (the paper's 1.1). 10 % allowed. *Above* `N_max` the
+    ///   closed form holds the arm at `R(N_max)` (`Capacity::above_grid`, a conservative
+    ///   bound: 2.6 × the grid-free rule in the case below), where the surface's own fall
+    ///   is not diluted by a growing arm: 18 % when `f̃` grows 2.4-fold (rect, Δ/a = 0.98,
+    ///   α = 70, regression `fcf7f851`), where the grid-free rule rises by 17 %. The
+    ///   controller acts there on `N_max` alone (the command saturates, the status stays
+    ///   `Saturated`), so for a fast skew the property is asserted on
+    ///   `clamp(N, N_min, N_max)`.
     #[test]
     fn n_slip_is_monotone_and_continuous_over_the_domain(
         seed in any::<u64>(),
@@ -221,10 +228,14 @@ proptest! {
         let mut cfg = random_config(&mut rng, skewed && table);
         cfg.mode = if table { Mode::Table } else { Mode::Ellipse };
         let Some(c) = build::<f64, Libm>(cfg) else { return Ok(()) };
-        let exempt = |x: f64| table && x < cfg.n_min_n;
         let fast_skew = cfg.skew.is_some_and(|p| p.alpha > 2.0 && p.delta_over_a > 0.0);
+        let exempt = |x: f64| table && (x < cfg.n_min_n || (fast_skew && x > cfg.n_max_n));
         let fall = if table && fast_skew { 0.10 } else { 1e-12 };
-        let acted = |x: f64| if table { x.max(cfg.n_min_n) } else { x };
+        let acted = |x: f64| match (table, fast_skew) {
+            (true, true) => x.clamp(cfg.n_min_n, cfg.n_max_n),
+            (true, false) => x.max(cfg.n_min_n),
+            _ => x,
+        };
         let n = |f: f64, m: f64, s: f64| c.required_force(f, m, s).unwrap().force_n;
         for (decades, u, v, grow) in loads {
             let target = (cfg.n_min_n * cfg.n_max_n).sqrt() * 10f64.powf(decades);

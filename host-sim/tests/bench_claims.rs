@@ -55,6 +55,7 @@ struct Dominance {
     family: String,
     contests: Vec<Contest>,
     defaults_beaten_by: Vec<String>,
+    common_practice_beaten_by: Vec<String>,
     softgrip_default: String,
 }
 
@@ -87,6 +88,14 @@ fn parse_row(r: &Value) -> Row {
     }
 }
 
+fn names(v: &Value) -> Vec<String> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap().to_string())
+        .collect()
+}
+
 fn parse_dominance(d: &Value) -> Dominance {
     let contests = d["contests"]
         .as_array()
@@ -107,12 +116,8 @@ fn parse_dominance(d: &Value) -> Dominance {
     Dominance {
         family: d["family"].as_str().unwrap().to_string(),
         contests,
-        defaults_beaten_by: d["defaults_beaten_by"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|s| s.as_str().unwrap().to_string())
-            .collect(),
+        defaults_beaten_by: names(&d["defaults_beaten_by"]),
+        common_practice_beaten_by: names(&d["common_practice_beaten_by"]),
         softgrip_default: d["softgrip_default"].as_str().unwrap().to_string(),
     }
 }
@@ -347,6 +352,18 @@ fn render_claims(b: &Bench) -> String {
             })
         })
         .collect();
+    let defaults: Vec<String> = b
+        .rows
+        .iter()
+        .filter(|r| r.family == FAMILIES[0] && r.default && !r.controller.starts_with("softgrip"))
+        .map(|r| format!("{} {}", r.controller, r.knob_value))
+        .collect();
+    let _ = write!(
+        s,
+        " Every baseline's default is chosen as softgrip's is, by the same safety-first rule \
+         on held-out seeds ({}).",
+        defaults.join(", ")
+    );
     if beaten.is_empty() {
         s += " No baseline's default beats softgrip's default in any family.";
     } else {
@@ -354,6 +371,28 @@ fn render_claims(b: &Bench) -> String {
             s,
             " A baseline's default beats softgrip's default in {}.",
             beaten.join(", ")
+        );
+    }
+    let common: Vec<String> = FAMILIES
+        .iter()
+        .filter_map(|f| {
+            let d = b.dominance(f);
+            (!d.common_practice_beaten_by.is_empty()).then(|| {
+                let names: Vec<String> = d
+                    .common_practice_beaten_by
+                    .iter()
+                    .map(|x| setting(x))
+                    .collect();
+                format!("{f} ({})", names.join(", "))
+            })
+        })
+        .collect();
+    if !common.is_empty() {
+        let _ = write!(
+            s,
+            " At the margin of common practice, 1.3, the baselines' default before the rule \
+             chose them, a baseline beats softgrip's default in {}.",
+            common.join(", ")
         );
     }
     format!(
@@ -526,5 +565,10 @@ fn a_changed_run_changes_the_claim() {
     assert_ne!(before, render_claims(&b));
     let mut b = load();
     b.dominance[0].defaults_beaten_by.push("constant@10".into());
+    assert_ne!(before, render_claims(&b));
+    let mut b = load();
+    b.dominance[1]
+        .common_practice_beaten_by
+        .push("box@1.3".into());
     assert_ne!(before, render_claims(&b));
 }

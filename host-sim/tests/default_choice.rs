@@ -1,12 +1,12 @@
-//! softgrip's default mode and safety factor are the ones the rule of
-//! `bench::default_choice` picks from the committed held-out run (docs/bench/heldout/),
-//! whose seeds the published run does not score on; and the rule itself picks, on a
-//! small hand-made run, what it says it picks.
+//! softgrip's default mode and safety factor, and every baseline's default knob, are the
+//! ones the rule of `bench::default_choice` picks from the committed held-out run
+//! (docs/bench/heldout/), whose seeds the published run does not score on; and the rule
+//! itself picks, on a small hand-made run, what it says it picks.
 
 mod common;
 
 use host_sim::bench::default_choice::{choose, Choice};
-use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
+use host_sim::bench::sweep::{RunRow, Sweep, TrialResult, SWEEPS};
 use host_sim::bench::FamilyResults;
 use host_sim::sim::controllers::ControllerKind;
 use serde_json::Value;
@@ -44,12 +44,35 @@ fn the_default_is_the_held_out_runs_choice() {
     assert_eq!(
         (
             chosen["controller"].as_str().unwrap(),
-            chosen["safety"].as_f64().unwrap()
+            chosen["knob_value"].as_f64().unwrap()
         ),
         (mode, ControllerConfig::DEFAULT.safety),
         "ControllerConfig::DEFAULT is not the held-out run's choice: {}",
         held["default_choice"]
     );
+}
+
+#[test]
+fn every_baselines_default_is_the_held_out_runs_choice() {
+    let held = json("docs/bench/heldout/bench.json");
+    let choices = held["baseline_default_choices"].as_array().unwrap();
+    let baselines: Vec<&Sweep> = SWEEPS
+        .iter()
+        .filter(|s| !s.controller.is_softgrip())
+        .collect();
+    assert_eq!(choices.len(), baselines.len(), "{choices:?}");
+    for sw in baselines {
+        let name = sw.controller.name();
+        let c = choices
+            .iter()
+            .find(|c| c["chosen"]["controller"] == name)
+            .unwrap_or_else(|| panic!("the held-out run chose no default for {name}"));
+        assert_eq!(
+            sw.default,
+            c["chosen"]["knob_value"].as_f64().unwrap(),
+            "{name}'s default is not the held-out run's choice: {c}"
+        );
+    }
 }
 
 const BLOCK: (&str, &str) = ("<!-- default-choice:begin", "<!-- default-choice:end -->");
@@ -60,15 +83,15 @@ fn render(held: &Value) -> String {
     let seeds: Vec<String> = seeds(held).iter().map(u64::to_string).collect();
     let cands = c["candidates"].as_array().unwrap();
     let find = |mode: &str, s: f64| {
-        cands
-            .iter()
-            .find(|x| x["controller"] == mode && (x["safety"].as_f64().unwrap() - s).abs() < 1e-9)
+        cands.iter().find(|x| {
+            x["controller"] == mode && (x["knob_value"].as_f64().unwrap() - s).abs() < 1e-9
+        })
     };
     let least_safe = |mode: &str| {
         cands
             .iter()
             .filter(|x| x["controller"] == mode && x["drops"] == c["safest_drops"])
-            .map(|x| x["safety"].as_f64().unwrap())
+            .map(|x| x["knob_value"].as_f64().unwrap())
             .fold(f64::INFINITY, f64::min)
     };
     let mut out = format!(
@@ -90,7 +113,7 @@ fn render(held: &Value) -> String {
         least_safe("softgrip-table"),
         c["safe_drops_max"].as_f64().unwrap(),
         c["chosen"]["controller"].as_str().unwrap(),
-        c["chosen"]["safety"],
+        c["chosen"]["knob_value"],
         c["chosen"]["drops"],
         c["chosen"]["force_over_oracle"].as_f64().unwrap(),
     );
@@ -112,6 +135,21 @@ fn render(held: &Value) -> String {
             s,
             cell("softgrip-ellipse"),
             cell("softgrip-table")
+        );
+    }
+    out += "\nEvery baseline enters on the same terms: the same rule, over its own knob \
+            alone, chooses the default the bench marks for it (`*`).\n\n\
+            | controller | default | its drops on the aims | the fewest (safe within) | \
+            force/oracle |\n| --- | ---: | ---: | ---: | ---: |\n";
+    for b in held["baseline_default_choices"].as_array().unwrap() {
+        out += &format!(
+            "| {} | {} | {} | {} ({:.1}) | {:.3} |\n",
+            b["chosen"]["controller"].as_str().unwrap(),
+            b["chosen"]["knob_value"],
+            b["chosen"]["drops"],
+            b["safest_drops"],
+            b["safe_drops_max"].as_f64().unwrap(),
+            b["chosen"]["force_over_oracle"].as_f64().unwrap(),
         );
     }
     out + BLOCK.1
@@ -192,18 +230,18 @@ fn the_rule_takes_the_cheapest_setting_as_safe_as_the_safest() {
         c.safe_drops_max
     );
     assert_eq!(
-        (c.chosen.controller.as_str(), c.chosen.safety),
+        (c.chosen.controller.as_str(), c.chosen.knob_value),
         ("softgrip-table", 1.0)
     );
     // Four drops are not as safe: the cheapest of the rest.
     let c = run([4, 0, 4, 0], [1.0, 1.5, 0.98, 1.45]).unwrap();
     assert_eq!(
-        (c.chosen.controller.as_str(), c.chosen.safety),
+        (c.chosen.controller.as_str(), c.chosen.knob_value),
         ("softgrip-table", 1.5)
     );
     let c = run([3, 0, 4, 0], [1.0, 1.5, 0.98, 1.45]).unwrap();
     assert_eq!(
-        (c.chosen.controller.as_str(), c.chosen.safety),
+        (c.chosen.controller.as_str(), c.chosen.knob_value),
         ("softgrip-ellipse", 1.0)
     );
 }

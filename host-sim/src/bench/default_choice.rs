@@ -17,8 +17,11 @@
 //!
 //! Run on held-out seeds (never the scoring seeds), this chooses
 //! [`ControllerConfig::DEFAULT`](softgrip::controller::ControllerConfig)'s mode and
-//! safety; `host-sim/tests/default_choice.rs` checks the committed held-out run against
-//! it. Cost: one pass over the trials' runs.
+//! safety. Every baseline enters on the same terms: the same rule, over its own knob
+//! alone ([`baseline_choices`]), chooses the default the bench marks for it
+//! ([`super::sweep::SWEEPS`]). `host-sim/tests/default_choice.rs` checks the committed
+//! held-out run against all of them. Cost: one pass over the trials' runs per
+//! controller.
 
 use super::stats::wilson95;
 use super::sweep::{Sweep, TrialResult};
@@ -29,13 +32,14 @@ use serde::Serialize;
 /// The families the rule needs, all of them.
 const FAMILIES: [&str; 5] = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
 
-/// One setting of a softgrip mode, as the rule sees it.
+/// One setting of a controller, as the rule sees it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Candidate {
-    /// The controller (`softgrip-ellipse` or `softgrip-table`).
+    /// The controller (`softgrip-ellipse`, `softgrip-table` or a baseline).
     pub controller: String,
-    /// Its safety factor.
-    pub safety: f64,
+    /// Its knob's value (the safety factor; the force for `constant`, the floor for
+    /// `slip-servo`).
+    pub knob_value: f64,
     /// Its drops on the aims.
     pub drops: usize,
     /// The geometric mean over the families of the mean force over the oracle's.
@@ -62,17 +66,40 @@ fn counts(family: &str, r: &TrialResult) -> bool {
     r.holdable && (family != "mu-mismatch" || r.sensor)
 }
 
-/// The rule applied to a run's results, or `None` when the run lacks a family or either
-/// softgrip controller.
+/// softgrip's default: the rule over the settings of both modes, or `None` when the run
+/// lacks a family or either softgrip controller.
 pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
-    let softgrip = [
-        ControllerKind::SoftgripEllipse,
-        ControllerKind::SoftgripTable,
-    ];
+    choose_among(
+        sweeps,
+        groups,
+        &[
+            ControllerKind::SoftgripEllipse,
+            ControllerKind::SoftgripTable,
+        ],
+    )
+}
+
+/// Each baseline's default: the same rule over that baseline's own settings, for every
+/// baseline the run swept (none without all five families).
+pub fn baseline_choices(sweeps: &[Sweep], groups: &[FamilyResults]) -> Vec<Choice> {
+    sweeps
+        .iter()
+        .filter(|s| !s.controller.is_softgrip())
+        .filter_map(|s| choose_among(sweeps, groups, &[s.controller]))
+        .collect()
+}
+
+/// The rule over the settings of the controllers `kinds`, or `None` when the run lacks a
+/// family or one of them.
+pub fn choose_among(
+    sweeps: &[Sweep],
+    groups: &[FamilyResults],
+    kinds: &[ControllerKind],
+) -> Option<Choice> {
     if !FAMILIES
         .iter()
         .all(|f| groups.iter().any(|g| g.family == *f))
-        || !softgrip
+        || !kinds
             .iter()
             .all(|k| sweeps.iter().any(|s| s.controller == *k))
     {
@@ -87,7 +114,7 @@ pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
     let mut col = 0;
     for sw in sweeps {
         for &v in sw.values {
-            if softgrip.contains(&sw.controller) {
+            if kinds.contains(&sw.controller) {
                 candidates.push(candidate(sw, v, col, groups));
             }
             col += 1;
@@ -101,7 +128,7 @@ pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
         .min_by(|a, b| {
             a.force_over_oracle
                 .total_cmp(&b.force_over_oracle)
-                .then(a.safety.total_cmp(&b.safety))
+                .then(a.knob_value.total_cmp(&b.knob_value))
         })?
         .clone();
     Some(Choice {
@@ -134,7 +161,7 @@ fn candidate(sw: &Sweep, value: f64, col: usize, groups: &[FamilyResults]) -> Ca
     }
     Candidate {
         controller: sw.controller.name().to_string(),
-        safety: value,
+        knob_value: value,
         drops,
         force_over_oracle: (log_sum / FAMILIES.len() as f64).exp(),
     }
@@ -150,8 +177,23 @@ pub fn lines(c: &Choice) -> String {
         c.aim_trials,
         c.safe_drops_max,
         c.chosen.controller,
-        c.chosen.safety,
+        c.chosen.knob_value,
         c.chosen.drops,
+        c.chosen.force_over_oracle
+    )
+}
+
+/// One line for a baseline's choice.
+pub fn baseline_line(c: &Choice) -> String {
+    format!(
+        "{}'s default by the same rule: {}@{} ({} drops on the aims, the fewest {}, safe \
+         within {:.1}; {:.3} x the oracle's force)",
+        c.chosen.controller,
+        c.chosen.controller,
+        c.chosen.knob_value,
+        c.chosen.drops,
+        c.safest_drops,
+        c.safe_drops_max,
         c.chosen.force_over_oracle
     )
 }

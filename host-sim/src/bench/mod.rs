@@ -303,6 +303,10 @@ pub fn write_outputs(
     if let Some(c) = &choice {
         show(&format!("{}\n", default_choice::lines(c)));
     }
+    let baseline_choices = default_choice::baseline_choices(&opts.sweeps, groups);
+    for c in &baseline_choices {
+        show(&format!("{}\n", default_choice::baseline_line(c)));
+    }
     let json = opts.out.join("bench.json");
     let parts = report::JsonParts {
         key: &shard::Key::of(opts),
@@ -310,6 +314,7 @@ pub fn write_outputs(
         per_seed: &per_seed,
         dominance: &checks,
         default_choice: choice.as_ref(),
+        baseline_default_choices: &baseline_choices,
     };
     report::write_json(&json, &parts)
         .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))

@@ -2,7 +2,7 @@
 
 use super::shard::Key;
 use super::stats::Row;
-use super::sweep::{Sweep, TrialResult};
+use super::sweep::{Sweep, TrialResult, COMMON_PRACTICE_SAFETY};
 use crate::sim::controllers::ControllerKind;
 use softgrip::controller::ControllerConfig;
 use std::fmt::Write;
@@ -66,11 +66,13 @@ pub struct JsonParts<'a> {
     /// softgrip's default as the run would choose it (`null` without all five families
     /// and both softgrip modes).
     pub default_choice: Option<&'a super::default_choice::Choice>,
+    /// Each baseline's default by the same rule, over its own knob.
+    pub baseline_default_choices: &'a [super::default_choice::Choice],
 }
 
 /// Writes `bench.json`: the run's options (`key`: plant, seeds, trials, families,
 /// sweeps, link...), the `rows` pooled over the seeds, the `per_seed` rows, the
-/// `dominance` checks and the `default_choice`.
+/// `dominance` checks, the `default_choice` and the `baseline_default_choices`.
 pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
     let v = serde_json::json!({
         "key": parts.key,
@@ -78,6 +80,7 @@ pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
         "per_seed": parts.per_seed,
         "dominance": parts.dominance,
         "default_choice": parts.default_choice,
+        "baseline_default_choices": parts.baseline_default_choices,
     });
     let text = serde_json::to_string_pretty(&v).map_err(std::io::Error::other)?;
     std::fs::write(path, text + "\n")
@@ -166,6 +169,10 @@ pub struct Dominance {
     /// The baselines whose default setting beats softgrip's default (the default of the
     /// configuration's mode), as `controller@knob_value`.
     pub defaults_beaten_by: Vec<String>,
+    /// The baselines with a safety factor that, at the margin of common practice
+    /// ([`COMMON_PRACTICE_SAFETY`], their default before the rule chose them), beat
+    /// softgrip's default, as `controller@knob_value`.
+    pub common_practice_beaten_by: Vec<String>,
     /// softgrip's default, `controller@knob_value`.
     pub softgrip_default: String,
 }
@@ -213,19 +220,23 @@ pub fn dominance(family: &str, rows: &[Row], max_drop_rate: f64) -> Dominance {
         })
         .collect();
     let ours = softgrip_default(rows);
-    let defaults_beaten_by = match ours {
+    let beating = |pick: &dyn Fn(&Row) -> bool| match ours {
         Some(o) => rows
             .iter()
-            .filter(|r| !softgrip(r) && r.default && beats(r, o))
+            .filter(|r| !softgrip(r) && pick(r) && beats(r, o))
             .map(name)
             .collect(),
         None => Vec::new(),
     };
+    let defaults_beaten_by = beating(&|r| r.default);
+    let common_practice_beaten_by =
+        beating(&|r| r.knob == "safety" && r.knob_value == COMMON_PRACTICE_SAFETY);
     Dominance {
         family: family.to_string(),
         max_drop_rate,
         contests,
         defaults_beaten_by,
+        common_practice_beaten_by,
         softgrip_default: ours.map(name).unwrap_or_default(),
     }
 }
@@ -277,6 +288,15 @@ pub fn dominance_lines(d: &Dominance) -> String {
             d.family,
             d.softgrip_default,
             d.defaults_beaten_by.join(", ")
+        );
+    }
+    if !d.common_practice_beaten_by.is_empty() {
+        let _ = write!(
+            s,
+            "\n{}: at the margin of common practice ({COMMON_PRACTICE_SAFETY}), {} beats \
+             softgrip's default",
+            d.family,
+            d.common_practice_beaten_by.join(", ")
         );
     }
     s

@@ -39,7 +39,7 @@ pub use baseline::{Baseline, BaselineSettings};
 /// names, CSV columns and bench.json keys carry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, ValueEnum)]
 pub enum ControllerKind {
-    /// softgrip in the configuration's mode (the default mode: the inscribed ellipse).
+    /// softgrip in the configuration's mode (the default mode: the surface table).
     Softgrip,
     /// softgrip, mode `ellipse`.
     SoftgripEllipse,

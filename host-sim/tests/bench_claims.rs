@@ -490,10 +490,18 @@ fn render_results(b: &Bench) -> String {
     }
     let pct_drop =
         |f: &str, name: &str| pct(b.row(f, name).drops as f64 / b.row(f, name).trials as f64);
+    let constant_default = b
+        .rows
+        .iter()
+        .find(|r| r.family == "twist" && r.controller == "constant" && r.default)
+        .map(|r| format!("constant@{}", r.knob_value))
+        .expect("bench.json: constant's default row in twist");
     let _ = writeln!(
         s,
-        "`constant` at its default 10 N drops {} of the `twist` trials.",
-        pct_drop("twist", "constant@10")
+        "`constant` at 10 N drops {} of the `twist` trials; at its default, {} N, {}.",
+        pct_drop("twist", "constant@10"),
+        constant_default.trim_start_matches("constant@"),
+        pct_drop("twist", &constant_default)
     );
     s + RESULTS.1
 }

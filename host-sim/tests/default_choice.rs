@@ -5,7 +5,7 @@
 
 mod common;
 
-use host_sim::bench::default_choice::{choose, Choice};
+use host_sim::bench::default_choice::{baseline_choices, choose, Choice};
 use host_sim::bench::sweep::{RunRow, Sweep, TrialResult, SWEEPS};
 use host_sim::bench::FamilyResults;
 use host_sim::sim::controllers::ControllerKind;
@@ -188,6 +188,11 @@ fn sweeps() -> Vec<Sweep> {
 /// first trials of `shake` dropped by setting `j` (ellipse 1.0, 1.5, table 1.0, 1.5), and
 /// each setting's force over the oracle `force[j]` on every trial.
 fn run(drops: [usize; 4], force: [f64; 4]) -> Option<Choice> {
+    choose(&sweeps(), &groups(drops, force))
+}
+
+/// The trials of [`run`], for any four columns of settings.
+fn groups(drops: [usize; 4], force: [f64; 4]) -> Vec<FamilyResults> {
     let families = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
     let groups: Vec<FamilyResults> = families
         .into_iter()
@@ -214,7 +219,7 @@ fn run(drops: [usize; 4], force: [f64; 4]) -> Option<Choice> {
                 .collect(),
         })
         .collect();
-    choose(&sweeps(), &groups)
+    groups
 }
 
 #[test]
@@ -257,4 +262,44 @@ fn the_rule_needs_every_family() {
         });
     }
     assert!(choose(&sweeps(), &groups).is_none());
+}
+
+#[test]
+fn a_baseline_is_judged_on_its_own_settings() {
+    // Columns: softgrip-ellipse 1.0 and 1.5, then fixed-torsion 1.0 and 1.5.
+    let sweeps: Vec<Sweep> = [
+        ControllerKind::SoftgripEllipse,
+        ControllerKind::FixedTorsion,
+    ]
+    .into_iter()
+    .map(|controller| Sweep {
+        controller,
+        knob: "safety",
+        values: &VALUES,
+        default: 1.0,
+    })
+    .collect();
+    // softgrip drops none; fixed-torsion's fewest is 6 (at 1.5), and 9 at 1.0 lies
+    // within the Wilson bound of 6 in 50 (11.9 drops): its cheaper 1.0 is its default,
+    // though softgrip's 0 would rule both out.
+    let trials = groups([0, 0, 9, 6], [1.0, 1.5, 1.1, 1.6]);
+    let c = baseline_choices(&sweeps, &trials);
+    assert_eq!(c.len(), 1);
+    assert_eq!(c[0].safest_drops, 6);
+    assert!(
+        (c[0].safe_drops_max - 11.9).abs() < 0.05,
+        "{}",
+        c[0].safe_drops_max
+    );
+    assert_eq!(c[0].candidates.len(), 2);
+    assert_eq!(
+        (c[0].chosen.controller.as_str(), c[0].chosen.knob_value),
+        ("fixed-torsion", 1.0)
+    );
+    // Ten drops, beyond the bound of 1 in 50 (5.2): the safer setting.
+    let c = baseline_choices(&sweeps, &groups([0, 0, 10, 1], [1.0, 1.5, 1.1, 1.6]));
+    assert_eq!(
+        (c[0].chosen.controller.as_str(), c[0].chosen.knob_value),
+        ("fixed-torsion", 1.5)
+    );
 }

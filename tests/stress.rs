@@ -983,11 +983,14 @@ fn extreme_skew_rates_give_finite_sweeps() {
 }
 
 /// The skew never needs to be named for the controller: `SkewParams` at the largest skew
-/// in table mode builds (rectangle) and gives finite, conservative answers.
+/// in table mode builds (rectangle) and gives finite, conservative answers. At safety 1.5
+/// the heaviest load asks 17.9 N, inside the grid (above `N_max` the answer is the
+/// closed form's conservative bound instead, `Capacity::above_grid`).
 #[test]
 fn table_mode_at_the_largest_skew() {
     let cfg = ControllerConfig {
         mode: Mode::Table,
+        safety: 1.5,
         skew: Some(SkewParams {
             delta_over_a: DELTA,
             alpha: 1.1,

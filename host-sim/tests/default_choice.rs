@@ -119,8 +119,8 @@ fn render(held: &Value) -> String {
     );
     out += "| safety | ellipse: drops, force/oracle | table: drops, force/oracle |\n";
     out += "| ---: | ---: | ---: |\n";
-    for k in 0..=8 {
-        let s = 1.2 + 0.05 * f64::from(k);
+    for k in 0..=12 {
+        let s = 1.4 + 0.05 * f64::from(k);
         let cell = |mode: &str| {
             find(mode, s).map_or("–".to_string(), |x| {
                 format!(

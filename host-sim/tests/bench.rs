@@ -393,3 +393,57 @@ fn the_wilson_interval_brackets_the_rate() {
     let [lo, hi] = stats::wilson95(10, 20);
     assert!((lo - 0.2993).abs() < 1e-3 && (hi - 0.7007).abs() < 1e-3);
 }
+
+/// The clairvoyant constant grip: per holdable trial, the least constant of the grid that
+/// holds it (a reference), here on three hand-made trials against a grid of 1, 2 and 3 N
+/// beside a softgrip sweep whose columns it must skip.
+#[test]
+fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
+    use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
+    use host_sim::sim::controllers::ControllerKind;
+    let sweeps = [
+        Sweep {
+            controller: ControllerKind::SoftgripTable,
+            knob: "safety",
+            values: &[1.0, 2.0],
+            default: 1.0,
+        },
+        Sweep {
+            controller: ControllerKind::Constant,
+            knob: "force_n",
+            values: &[1.0, 2.0, 3.0],
+            default: 3.0,
+        },
+    ];
+    let run = |dropped: bool, mean: f64| RunRow {
+        dropped,
+        slip_events: 0,
+        slip_distance_m: 0.0,
+        mean_force_n: mean,
+        peak_force_n: mean,
+    };
+    let trial = |holdable: bool, oracle: f64, drops: [bool; 3]| TrialResult {
+        true_mu: 1.0,
+        mu_ratio: 1.0,
+        sensor: false,
+        holdable,
+        oracle_mean_n: oracle,
+        // softgrip's runs hold at 0.5 N: never a constant grip's.
+        runs: [run(false, 0.5), run(false, 0.5)]
+            .into_iter()
+            .chain(drops.iter().zip([1.0, 2.0, 3.0]).map(|(d, n)| run(*d, n)))
+            .collect(),
+    };
+    let results = [
+        trial(true, 1.0, [false, false, false]), // 1 N holds: 1.0
+        trial(true, 1.0, [true, false, false]),  // 2 N: 2.0
+        trial(true, 2.0, [true, true, false]),   // 3 N over 2 N: 1.5
+        trial(false, 1.0, [true, true, true]),   // not holdable: left out
+    ];
+    let refs: Vec<&TrialResult> = results.iter().collect();
+    let c = stats::clairvoyant_constant("lift-hold", &sweeps, &refs).unwrap();
+    assert_eq!(c.trials, 3);
+    assert!((c.mean_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
+    assert!((c.median_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
+    assert!(stats::clairvoyant_constant("lift-hold", &sweeps[..1], &refs).is_none());
+}

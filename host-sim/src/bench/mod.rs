@@ -274,6 +274,7 @@ pub fn write_outputs(
     mut show: impl FnMut(&str),
 ) -> Result<(), BenchError> {
     let (mut pooled, mut per_seed, mut checks) = (Vec::new(), Vec::new(), Vec::new());
+    let mut clairvoyant = Vec::new();
     for family in &opts.families {
         let mine: Vec<&FamilyResults> = groups.iter().filter(|g| g.family == *family).collect();
         let all: Vec<&TrialResult> = mine.iter().flat_map(|g| g.results.iter()).collect();
@@ -283,11 +284,19 @@ pub fn write_outputs(
             per_seed.extend(stats::rows(family, Some(g.seed), &opts.sweeps, &results));
         }
         let check = report::dominance(family, &rows, report::DOMINANCE_MAX_DROP_RATE);
+        let reference = stats::clairvoyant_constant(family, &opts.sweeps, &all);
         show(&format!(
-            "{}\n{}\n",
+            "{}\n{}\n{}",
             report::family_table(family, &rows),
-            report::dominance_lines(&check)
+            report::dominance_lines(&check),
+            reference.as_ref().map_or(String::new(), |c| format!(
+                "{family}: a constant grip chosen per trial in advance (the least of the grid \
+                 that holds it; a reference, not a controller) needs {:.3} x the oracle's force \
+                 (median {:.3}) over the {} holdable trials\n",
+                c.mean_force_over_oracle, c.median_force_over_oracle, c.trials
+            ))
         ));
+        clairvoyant.extend(reference);
         let by_seed: Vec<(u64, &[TrialResult])> = mine
             .iter()
             .map(|g| (g.seed, g.results.as_slice()))
@@ -315,6 +324,7 @@ pub fn write_outputs(
         dominance: &checks,
         default_choice: choice.as_ref(),
         baseline_default_choices: &baseline_choices,
+        clairvoyant_constant: &clairvoyant,
     };
     report::write_json(&json, &parts)
         .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))

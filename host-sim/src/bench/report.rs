@@ -68,11 +68,14 @@ pub struct JsonParts<'a> {
     pub default_choice: Option<&'a super::default_choice::Choice>,
     /// Each baseline's default by the same rule, over its own knob.
     pub baseline_default_choices: &'a [super::default_choice::Choice],
+    /// Each family's clairvoyant constant grip, a reference.
+    pub clairvoyant_constant: &'a [super::stats::Clairvoyant],
 }
 
 /// Writes `bench.json`: the run's options (`key`: plant, seeds, trials, families,
 /// sweeps, link...), the `rows` pooled over the seeds, the `per_seed` rows, the
-/// `dominance` checks, the `default_choice` and the `baseline_default_choices`.
+/// `dominance` checks, the `default_choice`, the `baseline_default_choices` and each
+/// family's `clairvoyant_constant` reference.
 pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
     let v = serde_json::json!({
         "key": parts.key,
@@ -81,6 +84,7 @@ pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
         "dominance": parts.dominance,
         "default_choice": parts.default_choice,
         "baseline_default_choices": parts.baseline_default_choices,
+        "clairvoyant_constant": parts.clairvoyant_constant,
     });
     let text = serde_json::to_string_pretty(&v).map_err(std::io::Error::other)?;
     std::fs::write(path, text + "\n")

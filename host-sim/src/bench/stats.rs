@@ -113,3 +113,66 @@ pub fn rows(
     }
     out
 }
+
+/// A reference, not a controller: for each holdable trial, the least constant grip of
+/// the run's grid that holds it, chosen knowing the trial in advance. No causal
+/// controller can choose so (it would have to know the trial's peak load and its plant's
+/// creep before they come); the figure says how far the oracle, which follows the load
+/// tick by tick with no lag, lies from any steady grip. The 0.5 N grid makes it at most
+/// 0.5 N high per trial.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Clairvoyant {
+    /// Family.
+    pub family: String,
+    /// The holdable trials (each is held by some constant of the grid, `N_max` at least).
+    pub trials: usize,
+    /// The mean over those trials of that grip's mean force over the oracle's [-].
+    pub mean_force_over_oracle: f64,
+    /// Their median [-].
+    pub median_force_over_oracle: f64,
+}
+
+/// [`Clairvoyant`] over `results`, or `None` when the run has no `constant` sweep or no
+/// holdable trial. Cost: one pass over the constant grips' runs.
+pub fn clairvoyant_constant(
+    family: &str,
+    sweeps: &[Sweep],
+    results: &[&TrialResult],
+) -> Option<Clairvoyant> {
+    let mut col = 0;
+    let mut grid = None;
+    for sw in sweeps {
+        if sw.controller == crate::sim::controllers::ControllerKind::Constant {
+            grid = Some(col..col + sw.values.len());
+        }
+        col += sw.values.len();
+    }
+    let grid = grid?;
+    // The grid's values increase, so the first run that holds is the least grip.
+    let mut ratios: Vec<f64> = results
+        .iter()
+        .filter(|r| r.holdable)
+        .filter_map(|r| {
+            r.runs[grid.clone()]
+                .iter()
+                .find(|run| !run.dropped)
+                .map(|run| run.mean_force_n / r.oracle_mean_n)
+        })
+        .collect();
+    if ratios.is_empty() {
+        return None;
+    }
+    ratios.sort_by(f64::total_cmp);
+    let n = ratios.len();
+    let median = if n % 2 == 1 {
+        ratios[n / 2]
+    } else {
+        0.5 * (ratios[n / 2 - 1] + ratios[n / 2])
+    };
+    Some(Clairvoyant {
+        family: family.to_string(),
+        trials: n,
+        mean_force_over_oracle: ratios.iter().sum::<f64>() / n as f64,
+        median_force_over_oracle: median,
+    })
+}

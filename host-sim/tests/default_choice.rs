@@ -170,18 +170,23 @@ fn the_bench_page_states_the_held_out_choice() {
 const VALUES: [f64; 2] = [1.0, 1.5];
 
 fn sweeps() -> Vec<Sweep> {
-    [
+    safety_sweeps([
         ControllerKind::SoftgripEllipse,
         ControllerKind::SoftgripTable,
-    ]
-    .into_iter()
-    .map(|controller| Sweep {
-        controller,
-        knob: "safety",
-        values: &VALUES,
-        default: 1.0,
-    })
-    .collect()
+    ])
+}
+
+/// Two controllers swept over [`VALUES`], in this order.
+fn safety_sweeps(kinds: [ControllerKind; 2]) -> Vec<Sweep> {
+    kinds
+        .into_iter()
+        .map(|controller| Sweep {
+            controller,
+            knob: "safety",
+            values: &VALUES,
+            default: 1.0,
+        })
+        .collect()
 }
 
 /// Ten holdable trials per family (mu-mismatch's all with a sensor); `drops[j]` of the
@@ -267,18 +272,10 @@ fn the_rule_needs_every_family() {
 #[test]
 fn a_baseline_is_judged_on_its_own_settings() {
     // Columns: softgrip-ellipse 1.0 and 1.5, then fixed-torsion 1.0 and 1.5.
-    let sweeps: Vec<Sweep> = [
+    let sweeps = safety_sweeps([
         ControllerKind::SoftgripEllipse,
         ControllerKind::FixedTorsion,
-    ]
-    .into_iter()
-    .map(|controller| Sweep {
-        controller,
-        knob: "safety",
-        values: &VALUES,
-        default: 1.0,
-    })
-    .collect();
+    ]);
     // softgrip drops none; fixed-torsion's fewest is 6 (at 1.5), and 9 at 1.0 lies
     // within the Wilson bound of 6 in 50 (11.9 drops): its cheaper 1.0 is its default,
     // though softgrip's 0 would rule both out.

@@ -24,7 +24,7 @@
 //! controller.
 
 use super::stats::wilson95;
-use super::sweep::{Sweep, TrialResult};
+use super::sweep::{settings, Sweep, TrialResult};
 use super::FamilyResults;
 use crate::sim::controllers::ControllerKind;
 use serde::Serialize;
@@ -110,16 +110,10 @@ pub fn choose_among(
         .flat_map(|g| g.results.iter().map(move |r| counts(g.family, r)))
         .filter(|c| *c)
         .count();
-    let mut candidates = Vec::new();
-    let mut col = 0;
-    for sw in sweeps {
-        for &v in sw.values {
-            if kinds.contains(&sw.controller) {
-                candidates.push(candidate(sw, v, col, groups));
-            }
-            col += 1;
-        }
-    }
+    let candidates: Vec<Candidate> = settings(sweeps)
+        .filter(|(_, sw, _)| kinds.contains(&sw.controller))
+        .map(|(col, sw, v)| candidate(sw, v, col, groups))
+        .collect();
     let safest_drops = candidates.iter().map(|c| c.drops).min()?;
     let safe_drops_max = wilson95(safest_drops, aim_trials)[1] * aim_trials as f64;
     let chosen = candidates

@@ -2,7 +2,7 @@
 
 use super::shard::Key;
 use super::stats::Row;
-use super::sweep::{Sweep, TrialResult, COMMON_PRACTICE_SAFETY};
+use super::sweep::{settings, Sweep, TrialResult, COMMON_PRACTICE_SAFETY};
 use crate::sim::controllers::ControllerKind;
 use softgrip::controller::ControllerConfig;
 use std::fmt::Write;
@@ -105,27 +105,23 @@ pub fn write_trials_csv(
     );
     for (seed, results) in by_seed {
         for (i, r) in results.iter().enumerate() {
-            let mut col = 0;
-            for sw in sweeps {
-                for &v in sw.values {
-                    let run = &r.runs[col];
-                    col += 1;
-                    let _ = writeln!(
-                        s,
-                        "{seed},{i},{},{},{},{},{},{},{v},{},{},{},{},{}",
-                        r.true_mu,
-                        r.mu_ratio,
-                        r.sensor,
-                        r.holdable,
-                        r.oracle_mean_n,
-                        sw.controller.name(),
-                        run.dropped,
-                        run.slip_events,
-                        run.slip_distance_m,
-                        run.mean_force_n,
-                        run.peak_force_n
-                    );
-                }
+            for (col, sw, v) in settings(sweeps) {
+                let run = &r.runs[col];
+                let _ = writeln!(
+                    s,
+                    "{seed},{i},{},{},{},{},{},{},{v},{},{},{},{},{}",
+                    r.true_mu,
+                    r.mu_ratio,
+                    r.sensor,
+                    r.holdable,
+                    r.oracle_mean_n,
+                    sw.controller.name(),
+                    run.dropped,
+                    run.slip_events,
+                    run.slip_distance_m,
+                    run.mean_force_n,
+                    run.peak_force_n
+                );
             }
         }
     }

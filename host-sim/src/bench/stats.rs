@@ -2,7 +2,8 @@
 //! a Wilson 95 % interval), force over the oracle and slip, over the trials of one seed
 //! or of every seed pooled.
 
-use super::sweep::{Sweep, TrialResult};
+use super::sweep::{settings, Sweep, TrialResult};
+use crate::sim::controllers::ControllerKind;
 use serde::Serialize;
 
 /// One row of `bench.json`: one family, controller and knob value over all trials.
@@ -67,49 +68,45 @@ pub fn rows(
     results: &[&TrialResult],
 ) -> Vec<Row> {
     let mut out = Vec::new();
-    let mut col = 0;
     let n = results.len();
     let holdable = results.iter().filter(|r| r.holdable).count();
-    for sw in sweeps {
-        for &v in sw.values {
-            let (mut drops, mut drops_h) = (0, 0);
-            let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for r in results {
-                let run = &r.runs[col];
-                if run.dropped {
-                    drops += 1;
-                    if r.holdable {
-                        drops_h += 1;
-                    }
+    for (col, sw, v) in settings(sweeps) {
+        let (mut drops, mut drops_h) = (0, 0);
+        let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for r in results {
+            let run = &r.runs[col];
+            if run.dropped {
+                drops += 1;
+                if r.holdable {
+                    drops_h += 1;
                 }
-                ratio += run.mean_force_n / r.oracle_mean_n;
-                force += run.mean_force_n;
-                peak += run.peak_force_n;
-                slip += run.slip_distance_m;
-                events += run.slip_events as f64;
             }
-            let mean = |x: f64| if n > 0 { x / n as f64 } else { 0.0 };
-            out.push(Row {
-                family: family.to_string(),
-                seed,
-                controller: sw.controller.name().to_string(),
-                knob: sw.knob.to_string(),
-                knob_value: v,
-                default: v == sw.default,
-                trials: n,
-                holdable,
-                drops,
-                drops_holdable: drops_h,
-                drop_rate: mean(drops as f64),
-                drop_rate_ci95: wilson95(drops, n),
-                force_over_oracle: mean(ratio),
-                mean_force_n: mean(force),
-                peak_force_n: mean(peak),
-                slip_distance_m: mean(slip),
-                slip_events: mean(events),
-            });
-            col += 1;
+            ratio += run.mean_force_n / r.oracle_mean_n;
+            force += run.mean_force_n;
+            peak += run.peak_force_n;
+            slip += run.slip_distance_m;
+            events += run.slip_events as f64;
         }
+        let mean = |x: f64| if n > 0 { x / n as f64 } else { 0.0 };
+        out.push(Row {
+            family: family.to_string(),
+            seed,
+            controller: sw.controller.name().to_string(),
+            knob: sw.knob.to_string(),
+            knob_value: v,
+            default: v == sw.default,
+            trials: n,
+            holdable,
+            drops,
+            drops_holdable: drops_h,
+            drop_rate: mean(drops as f64),
+            drop_rate_ci95: wilson95(drops, n),
+            force_over_oracle: mean(ratio),
+            mean_force_n: mean(force),
+            peak_force_n: mean(peak),
+            slip_distance_m: mean(slip),
+            slip_events: mean(events),
+        });
     }
     out
 }
@@ -139,22 +136,20 @@ pub fn clairvoyant_constant(
     sweeps: &[Sweep],
     results: &[&TrialResult],
 ) -> Option<Clairvoyant> {
-    let mut col = 0;
-    let mut grid = None;
-    for sw in sweeps {
-        if sw.controller == crate::sim::controllers::ControllerKind::Constant {
-            grid = Some(col..col + sw.values.len());
-        }
-        col += sw.values.len();
+    // The grid's values increase, so its first setting that holds is the least grip.
+    let grid: Vec<usize> = settings(sweeps)
+        .filter(|(_, sw, _)| sw.controller == ControllerKind::Constant)
+        .map(|(col, _, _)| col)
+        .collect();
+    if grid.is_empty() {
+        return None;
     }
-    let grid = grid?;
-    // The grid's values increase, so the first run that holds is the least grip.
     let mut ratios: Vec<f64> = results
         .iter()
         .filter(|r| r.holdable)
         .filter_map(|r| {
-            r.runs[grid.clone()]
-                .iter()
+            grid.iter()
+                .map(|&col| &r.runs[col])
                 .find(|run| !run.dropped)
                 .map(|run| run.mean_force_n / r.oracle_mean_n)
         })

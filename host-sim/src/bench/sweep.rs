@@ -93,6 +93,17 @@ pub const SWEEPS: [Sweep; 7] = [
     },
 ];
 
+/// Every setting of `sweeps` as `(column, sweep, value)`, the column being the setting's
+/// index in a trial's runs ([`TrialResult::runs`]): the sweeps in order, each over its
+/// values.
+pub fn settings(sweeps: &[Sweep]) -> impl Iterator<Item = (usize, &Sweep, f64)> {
+    sweeps
+        .iter()
+        .flat_map(|sw| sw.values.iter().map(move |&v| (sw, v)))
+        .enumerate()
+        .map(|(col, (sw, v))| (col, sw, v))
+}
+
 /// `scene` with the controller's knob set to `value`.
 pub fn with_knob(scene: &Scene, controller: ControllerKind, value: f64) -> Scene {
     let mut s = scene.clone();

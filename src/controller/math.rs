@@ -68,24 +68,27 @@ impl TickMath<f32> for Micromath {
     }
 }
 
-/// `min(a, b)` as `f32::min` gives it (a NaN yields the other; the sign of a zero aside),
-/// by comparisons: the Cortex-M4F has no `VMINNM`, so `min` is an out-of-line `fminf`
-/// call, and the tick clamps seven times (the slip response three more).
+/// `min(a, b)` for a bound `b` that is never NaN, as `f32::min` gives it (a NaN `a`
+/// yields `b`; the sign of a zero aside), by one comparison: the Cortex-M4F has no
+/// `VMINNM`, so `min` is an out-of-line `fminf` call, and the tick clamps seven times
+/// (the slip response three more). Every caller's `b` is a validated bound or a value
+/// already clamped.
 #[inline(always)]
 pub(crate) fn lesser<T: Real>(a: T, b: T) -> T {
-    if b < a || a.is_nan() {
-        b
-    } else {
+    // A NaN `a` compares false and gives `b`.
+    if a < b {
         a
+    } else {
+        b
     }
 }
 
-/// `max(a, b)` as `f32::max` gives it, by comparisons (see [`lesser`]).
+/// `max(a, b)` for a bound `b` that is never NaN (see [`lesser`]).
 #[inline(always)]
 pub(crate) fn greater<T: Real>(a: T, b: T) -> T {
-    if b > a || a.is_nan() {
-        b
-    } else {
+    if a > b {
         a
+    } else {
+        b
     }
 }

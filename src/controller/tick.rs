@@ -71,7 +71,9 @@ pub struct TickOutput<T> {
     /// The friction coefficient the controller now believes: the configured `μ` until a
     /// slip signal lowers it (see [`slip`](super::slip)).
     pub mu_estimate: T,
-    /// The margin multiplying the safety factor: 1 until a slip signal raises it.
+    /// The margin multiplying the safety factor: 1 until a slip signal raises it (see
+    /// [`slip`](super::slip)), times [`CYCLIC_SAFETY_FACTOR`](super::lead::CYCLIC_SAFETY_FACTOR)
+    /// while the load cycles (see [`lead`](super::lead), "Cyclic loads").
     pub margin: T,
 }
 
@@ -306,9 +308,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.actuator.slew_n_per_s()
     }
 
-    /// The margin multiplying the safety factor (see [`slip`](super::slip)).
+    /// The margin multiplying the safety factor: the slip response's (see
+    /// [`slip`](super::slip)) times the cyclic load's (see [`lead`](super::lead)).
     pub fn margin(&self) -> T {
-        self.slip_response.margin()
+        self.slip_response.margin() * self.lead.safety_factor()
     }
 
     /// Measurements refused for their timestamp so far (saturating).
@@ -359,7 +362,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             fault_active,
             iterations: 0,
             mu_estimate: self.slip_response.mu_estimate(),
-            margin: self.slip_response.margin(),
+            margin: self.margin(),
         }
     }
 
@@ -378,7 +381,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             (f, mz) = (ft * inv_mu, mn * inv_mu);
             utilisation = self.capacity.utilisation::<M>(f, mz, m.normal_force_n);
         }
-        let safety = self.slip_response.safety(self.safety);
+        let cyclic = self.lead.safety_factor();
+        let safety = self.slip_response.safety(self.safety) * cyclic;
         let slip = self
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);
@@ -398,6 +402,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         }
         let ahead = self.lead.target(
             lesser(req.force_n, self.n_max),
+            slip.force_n,
             self.actuator.lag_s(),
             self.actuator.inv_slew(),
         );
@@ -418,7 +423,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             fault_active: false,
             iterations: slip.iterations.saturating_add(req.iterations),
             mu_estimate: self.slip_response.mu_estimate(),
-            margin: self.slip_response.margin(),
+            margin: self.slip_response.margin() * cyclic,
         };
         self.last = Some(out);
         out

@@ -129,7 +129,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             force_range: T::zero(),
             moment_range: T::zero(),
             stale_ticks: 1,
-            lead: Lead::new(1e-3),
+            lead: Lead::new(1e-3, 1.0),
             actuator: ActuatorId::new(0.0, f64::INFINITY, 1e-3),
             slip_response: SlipResponse::new(1.0, 1e-3),
             command: T::zero(),
@@ -207,7 +207,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             ticks.max(1.0) as u32
         };
-        self.lead = Lead::new(config.tick_period_s);
+        self.lead = Lead::new(config.tick_period_s, config.mu);
         self.actuator = ActuatorId::new(
             config.actuator_lag_s,
             config.actuator_slew_n_per_s,

@@ -1,0 +1,212 @@
+//! The cyclic load's margin (`controller::lead`, "Cyclic loads"): a shake multiplies the
+//! safety factor by `CYCLIC_SAFETY_FACTOR` from its second trough until twice
+//! `SWING_WINDOW_S` after its last, while a steady noisy hold, one lift, one twist, a slow sway and a
+//! ripple within sensor noise keep the configured factor on every tick.
+
+use softgrip::controller::lead::{CYCLIC_SAFETY_FACTOR, SWING_WINDOW_S};
+use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
+use std::f64::consts::TAU;
+
+/// A seeded normal variate (Box–Muller over a 64-bit LCG).
+struct Noise(u64);
+
+impl Noise {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+    fn normal(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
+    }
+}
+
+/// One tick's record: the time [s], the margin the tick reported and its `N_req` over
+/// `N_req` of the true load at the configured safety factor, and at that times
+/// `CYCLIC_SAFETY_FACTOR`.
+struct Tick {
+    t_s: f64,
+    margin: f64,
+    req_over_plain: f64,
+    req_over_cyclic: f64,
+}
+
+/// The moment's noise [N·m]: the simulator's `sensor_noise` default.
+const MOMENT_NOISE_NM: f64 = 2e-4;
+
+/// Runs `seconds` of the load `load(t) = (f_t [N], m_n [N·m])` at 1 kHz, with `noise_n`
+/// of noise on the force channels (and [`MOMENT_NOISE_NM`] on the moment), the
+/// normal force following the command (an ideal actuator, measured).
+fn run(
+    cfg: ControllerConfig,
+    seconds: f64,
+    noise_n: f64,
+    load: impl Fn(f64) -> (f64, f64),
+) -> Vec<Tick> {
+    let mut c = Controller::<f64>::new(cfg).unwrap();
+    let mut noise = Noise(11);
+    let mut force = cfg.n_min_n;
+    let mut out = Vec::new();
+    for k in 0..(seconds * 1e3) as u64 {
+        let t = k as f64 * 1e-3;
+        let (ft, mn) = load(t);
+        let m = Measurement {
+            tangential_force_n: [0.0, ft + noise_n * noise.normal()],
+            torsional_moment_nm: mn + MOMENT_NOISE_NM * noise.normal(),
+            normal_force_n: force + noise_n * noise.normal(),
+            timestamp_us: 1000 * (k + 1),
+            slip: SlipSignal::None,
+        };
+        let o = c.tick(&m);
+        force = o.command_n;
+        let plain = c.required_force(ft, mn, cfg.safety).unwrap().force_n;
+        let cyclic = c
+            .required_force(ft, mn, cfg.safety * CYCLIC_SAFETY_FACTOR)
+            .unwrap()
+            .force_n;
+        out.push(Tick {
+            t_s: t,
+            margin: o.margin,
+            req_over_plain: o.required_n / plain,
+            req_over_cyclic: o.required_n / cyclic,
+        });
+    }
+    out
+}
+
+/// The configurations tried: both modes, the actuator untold (led as a 20 ms lag) and
+/// told ideal.
+fn configs() -> Vec<ControllerConfig> {
+    let mut v = Vec::new();
+    for mode in [Mode::Ellipse, Mode::Table] {
+        for lag in [0.0, 1e-3] {
+            v.push(ControllerConfig {
+                mode,
+                actuator_lag_s: lag,
+                ..ControllerConfig::default()
+            });
+        }
+    }
+    v
+}
+
+/// The largest margin of a run.
+fn most_margin(ticks: &[Tick]) -> f64 {
+    ticks.iter().map(|k| k.margin).fold(0.0, f64::max)
+}
+
+/// A weight of `w` N lifted with a peak acceleration of `a_over_g` g: the load rises as
+/// the lift accelerates, falls below the weight as it decelerates (0.3 to 0.7 s), then
+/// holds the weight.
+fn lift(w: f64, a_over_g: f64, t: f64) -> f64 {
+    let x = ((t - 0.3) / 0.4).clamp(0.0, 1.0);
+    w * (1.0 + a_over_g * (TAU * x).sin())
+}
+
+#[test]
+fn a_steady_noisy_hold_never_cycles() {
+    for cfg in configs() {
+        for (w, noise) in [(0.3, 0.05), (1.0, 0.02), (3.0, 0.05)] {
+            let ticks = run(cfg, 3.0, noise, |_| (w, 0.002 * w));
+            assert_eq!(most_margin(&ticks), 1.0, "{cfg:?}, {w} N, noise {noise} N");
+        }
+    }
+}
+
+#[test]
+fn one_lift_never_cycles() {
+    for cfg in configs() {
+        for (w, a) in [(0.5, 0.1), (1.5, 0.3), (2.5, 0.5)] {
+            let ticks = run(cfg, 2.5, 0.02, |t| (lift(w, a, t), 0.01 * lift(w, a, t)));
+            assert_eq!(most_margin(&ticks), 1.0, "{cfg:?}, {w} N at {a} g");
+        }
+    }
+}
+
+#[test]
+fn one_twist_never_cycles() {
+    // A turn that accelerates, then decelerates: |m_n| rises, falls to 0 and rises again
+    // once (one bottom), as the bench's twist family does.
+    for cfg in configs() {
+        for peak_nm in [0.005, 0.02] {
+            let ticks = run(cfg, 2.0, 0.02, |t| {
+                let x = ((t - 0.2) / 1.0).clamp(0.0, 1.0);
+                (0.3, peak_nm * (TAU * x).sin())
+            });
+            assert_eq!(most_margin(&ticks), 1.0, "{cfg:?}, {peak_nm} N·m");
+        }
+    }
+}
+
+#[test]
+fn a_slow_sway_and_a_ripple_within_noise_do_not_cycle() {
+    for cfg in configs() {
+        // 0.5 Hz: a second between a top and the next bottom, a sequence of steady loads.
+        let sway = run(cfg, 6.0, 0.02, |t| (2.0 + 1.0 * (TAU * 0.5 * t).sin(), 0.0));
+        assert_eq!(most_margin(&sway), 1.0, "{cfg:?}: sway");
+        // 5 Hz at 0.02 N: as much as the noise.
+        let ripple = run(cfg, 3.0, 0.02, |t| {
+            (2.0 + 0.02 * (TAU * 5.0 * t).sin(), 0.0)
+        });
+        assert_eq!(most_margin(&ripple), 1.0, "{cfg:?}: ripple");
+    }
+}
+
+#[test]
+fn a_shake_cycles_from_its_second_trough_until_a_window_after_it() {
+    let factor = CYCLIC_SAFETY_FACTOR;
+    for cfg in configs() {
+        for hz in [2.0, 4.0, 8.0, 15.0] {
+            // A held weight of 1.5 N shaken by ±40 % from 0.5 s to 2.5 s.
+            let ticks = run(cfg, 5.0, 0.02, |t| {
+                let shaking = (0.5..2.5).contains(&t);
+                let swing = if shaking {
+                    0.4 * (TAU * hz * (t - 0.5)).sin()
+                } else {
+                    0.0
+                };
+                (1.5 * (1.0 + swing), 0.0)
+            });
+            let what = format!("{:?} lag {}, {hz} Hz", cfg.mode, cfg.actuator_lag_s);
+            let first = ticks
+                .iter()
+                .find(|k| k.margin > 1.0)
+                .unwrap_or_else(|| panic!("{what}: never cycled"));
+            // The second trough is at 0.5 s + 1.75 periods; the filter and the turn's
+            // depth delay it by under a quarter period more.
+            let second_trough_s = 0.5 + 1.75 / hz;
+            assert!(
+                first.t_s > 0.5 + 0.75 / hz && first.t_s < second_trough_s + 0.25 / hz + 0.02,
+                "{what}: first cycled at {} s, the second trough is at {second_trough_s} s",
+                first.t_s
+            );
+            assert_eq!(first.margin, factor, "{what}");
+            // From then until the shake ends it cycles on every tick, and asks the
+            // factor's force: N_req of the load at safety × factor.
+            for k in ticks
+                .iter()
+                .filter(|k| k.t_s >= first.t_s + 0.1 && k.t_s < 2.5)
+            {
+                assert_eq!(k.margin, factor, "{what}: at {} s", k.t_s);
+                assert!(
+                    (k.req_over_cyclic - 1.0).abs() < 0.1 && k.req_over_plain > 1.2,
+                    "{what}: at {} s, N_req is {} x the cyclic one, {} x the plain one",
+                    k.t_s,
+                    k.req_over_cyclic,
+                    k.req_over_plain
+                );
+            }
+            // The shake's last trough lies within one period of its end; two windows after
+            // that (and the filter's few milliseconds) the plain factor is back.
+            let back = 2.5 + 1.0 / hz + 2.0 * SWING_WINDOW_S + 0.03;
+            assert!(ticks.iter().filter(|k| k.t_s > back).count() > 500);
+            for k in ticks.iter().filter(|k| k.t_s > back) {
+                assert_eq!(k.margin, 1.0, "{what}: at {} s", k.t_s);
+                assert!((k.req_over_plain - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
+            }
+        }
+    }
+}

@@ -43,7 +43,7 @@ FINGER = dict(
 # The scene's safety factor: it fixes the operating force N* (softgrip's ellipse-mode
 # N_req at 1.3, as the scene was first defined, so the scene does not move with the
 # library's defaults) and is the Coulomb baseline's margin. softgrip itself runs at its
-# own defaults (table mode at 1.75, chosen on the bench's held-out seeds).
+# own defaults (table mode at 1.5, chosen on the bench's held-out seeds).
 SAFETY = 1.3
 SCENE_MODE = "ellipse"
 N_MIN, N_MAX = 0.2, 20.0
@@ -361,6 +361,32 @@ def baselines() -> list[Grip]:
     return [Softgrip(), Coulomb()] + [Constant(f) for f in (4.0, 6.0, 8.0, 10.0, 12.0, 16.0)]
 
 
+def least_holding_constant(
+    results: list[Result], mu_t: float, duration: float = T_END, step_n: float = 0.5
+) -> Optional[float]:
+    """The least constant grip on a `step_n` grid that holds the scene: the coarse
+    table's weakest holding constant, refined down in `step_n` steps to just above its
+    strongest failing one. A reference chosen knowing the scene, not a controller (the
+    bench's clairvoyant constant grip)."""
+    coarse = sorted(
+        (float(r.controller.split()[1]), r.held)
+        for r in results
+        if r.controller.startswith("constant")
+    )
+    holding = [f for f, held in coarse if held]
+    if not holding:
+        return None
+    best = holding[0]
+    failing = max((f for f, held in coarse if not held and f < best), default=0.0)
+    f = best - step_n
+    while f > failing + 1e-9:
+        if not run(Constant(f), mu_t, duration).held:
+            break
+        best = f
+        f -= step_n
+    return best
+
+
 def main(argv: Optional[list[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--json", action="store_true", help="print one JSON object")
@@ -377,11 +403,16 @@ def main(argv: Optional[list[str]] = None) -> int:
         r for r in results if r.controller.startswith("constant") and r.held
     ]
     weakest = min(holding_constants, key=lambda r: r.mean_force_n, default=None)
+    least_n = least_holding_constant(results, mu_t, args.duration)
     verdict = dict(
         softgrip_holds=soft.held,
         weakest_holding_constant=weakest.controller if weakest else None,
         softgrip_mean_below_every_holding_constant=bool(
             soft.held and all(soft.mean_force_n < r.mean_force_n for r in holding_constants)
+        ),
+        least_holding_constant_n=least_n,
+        softgrip_mean_over_least_holding_constant=(
+            soft.mean_force_n / least_n if least_n else None
         ),
     )
 
@@ -436,6 +467,12 @@ def main(argv: Optional[list[str]] = None) -> int:
             "{weakest_holding_constant}; softgrip's mean force below every constant grip "
             "that holds: {softgrip_mean_below_every_holding_constant}".format(**verdict)
         )
+        if least_n:
+            print(
+                f"least constant grip that holds, on a 0.5 N grid (chosen knowing the "
+                f"scene): {least_n:g} N; softgrip's mean force over it: "
+                f"{soft.mean_force_n / least_n:.3f}"
+            )
     if args.plot:
         plot(results, cone, args.plot)
     return 0

@@ -368,10 +368,9 @@ def least_holding_constant(
     table's weakest holding constant, refined down in `step_n` steps to just above its
     strongest failing one. A reference chosen knowing the scene, not a controller (the
     bench's clairvoyant constant grip)."""
+    # A constant grip's mean command is its force: no name to parse.
     coarse = sorted(
-        (float(r.controller.split()[1]), r.held)
-        for r in results
-        if r.controller.startswith("constant")
+        (r.mean_force_n, r.held) for r in results if r.controller.startswith("constant")
     )
     holding = [f for f, held in coarse if held]
     if not holding:

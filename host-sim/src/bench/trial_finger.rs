@@ -35,7 +35,7 @@ use softgrip::controller::FingerShape;
 /// Patch elements per side of the bench's brush fingers.
 pub const BRUSH_ELEMENTS: usize = 16;
 /// Most draws of a brush finger before the bench gives up on a trial.
-pub const MAX_DRAWS: usize = 32;
+pub const MAX_DRAWS: usize = 1024;
 
 /// Which plant the bench's trials run on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

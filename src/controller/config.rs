@@ -237,7 +237,7 @@ with_schema! {
         /// Time constant of the actuator that applies the command [s], `0 ≤ τ ≤ 1`: the
         /// prior of the lag the controller identifies online and commands ahead of a
         /// rising load by (see [`lead`](super::lead)). 0 says "not told": the identifier
-        /// starts from a 20 ms guess ([`UNTOLD_LAG_S`](super::actuator::UNTOLD_LAG_S)).
+        /// starts from a 40 ms guess ([`UNTOLD_LAG_S`](super::actuator::UNTOLD_LAG_S)).
         /// A lag under 2.5 tick periods (one tick, say) describes an ideal actuator, which
         /// gets no lead.
         pub actuator_lag_s: f64,
@@ -259,7 +259,7 @@ impl ControllerConfig {
     /// The defaults, the one place they are written: a hemicylindrical silicone fingertip
     /// in the paper's range: `μ = 0.8`, `k = 2`, no skew, `a = 2.5 mm · N^{1/2}`,
     /// `l = 10 mm`, 0.2–20 N, 1 kHz, an actuator nobody described (its lag identified
-    /// online from a 20 ms guess). The mode and the safety factor, table mode at
+    /// online from a 40 ms guess). The mode and the safety factor, table mode at
     /// `s = 1.5`, are the ones the bench chose on eight held-out seeds, safety first on
     /// the front of drops against force (`host-sim` `bench::default_choice`;
     /// docs/bench.md, "The default"); a cycling load gets `s` times the lead's

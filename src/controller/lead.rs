@@ -29,7 +29,7 @@
 //!
 //! `τ` and `r` are what the controller has identified of its actuator
 //! ([`actuator`](super::actuator)), starting from `actuator_lag_s` and
-//! `actuator_slew_n_per_s` as priors: an actuator nobody described is led as a 20 ms
+//! `actuator_slew_n_per_s` as priors: an actuator nobody described is led as a 40 ms
 //! lag until the first rise of the load has shown its own. While the identified lag is 0
 //! (an ideal actuator: one told, or one whose samples show it follows within the
 //! identifier's floor) the target is `N_req`, bit for bit.

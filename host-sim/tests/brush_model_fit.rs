@@ -16,13 +16,14 @@
 //!   every angle, and from 15° to 60° its mean is closer to the finger than the cone's.
 //!
 //! `cargo test --release -p host-sim --test brush_model_fit -- --nocapture` prints the
-//! table (about 15 s on the 2-core VM).
+//! table (about 30 s on the 2-core VM).
 
 mod common;
 
 use host_sim::bench::families::{N_MAX_N, N_MIN_N};
 use host_sim::bench::lab::{self, Beliefs};
 use host_sim::bench::trial_finger::{BenchPlant, FingerSource, TrialFinger};
+use host_sim::sim::controllers::baseline::{box_force_n, cone_force_n};
 use rand::{Rng, SeedableRng};
 use softgrip::controller::{Controller, ControllerConfig, Libm, Mode};
 
@@ -46,7 +47,8 @@ struct Rules {
 
 impl Rules {
     fn new(b: Beliefs, finger: &TrialFinger) -> Self {
-        // As the bench's `[controller]` table gives it (families.rs, `controller`).
+        // As the bench's `[controller]` table gives it (families.rs, `controller`); the
+        // cone and the box are the baselines' own rules (baseline.rs).
         let cfg = ControllerConfig {
             mu: b.mu,
             shape: finger.shape(),
@@ -73,8 +75,8 @@ impl Rules {
         [
             solve(&self.table) / n,
             solve(&self.ellipse) / n,
-            (f / mu).hypot(m / (mu * arm)) / n,
-            (f / mu).max(m / (mu * arm)) / n,
+            cone_force_n(f, m, mu, arm) / n,
+            box_force_n(f, m, mu, arm) / n,
         ]
     }
 }

@@ -102,10 +102,9 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
 /// 101 --trials 30`). On held-out seeds 101–404, table mode, 40 ms instead of 20 ms
 /// took the `shake` drops at safety 1.2, 1.25, 1.3 and 1.35 from 22, 16, 10 and 5 of
 /// 120 to 8, 5, 4 and 3 (8 % more force there at 1.2, 1 % less from 1.35), and 60 ms did
-/// no better. The cost
-/// through an ideal actuator is the lead on each rise of the load that moves the command
-/// slower than the identifier's [`RATE_MIN_N_PER_S`]: 0.2 % more force on the
-/// `lift-hold` family than with 20 ms.
+/// no better. The cost through an ideal actuator is the lead on each rise of the load
+/// that moves the command slower than the identifier's [`RATE_MIN_N_PER_S`]: 0.2 % more
+/// force on the `lift-hold` family than with 20 ms.
 pub const UNTOLD_LAG_S: f64 = 0.04;
 /// The weight of [`UNTOLD_LAG_S`], in samples: a guess, outweighed by the actuator's
 /// own first samples.

@@ -29,6 +29,17 @@ impl Limits {
     }
 }
 
+/// The force the cone of `fixed-torsion` asks for a load `(f, m)` at safety 1 [N]:
+/// `hypot(f/μ, m/(μ·arm))`, `arm` the fixed patch's torsion arm [m].
+pub fn cone_force_n(f: f64, m: f64, mu: f64, arm_m: f64) -> f64 {
+    (f / mu).hypot(m / (mu * arm_m))
+}
+
+/// The force the `box` asks for a load `(f, m)` at safety 1 [N]: `max(f/μ, m/(μ·arm))`.
+pub fn box_force_n(f: f64, m: f64, mu: f64, arm_m: f64) -> f64 {
+    (f / mu).max(m / (mu * arm_m))
+}
+
 /// What the baselines are told besides softgrip's configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BaselineSettings {
@@ -190,8 +201,8 @@ impl GripController for Baseline {
         let target = match self.kind {
             Kind::Constant => self.constant_n,
             Kind::Coulomb => s * f / mu,
-            Kind::Box => s * (f / mu).max(m / (mu * arm)),
-            Kind::FixedTorsion => s * (f / mu).hypot(m / (mu * arm)),
+            Kind::Box => s * box_force_n(f, m, mu, arm),
+            Kind::FixedTorsion => s * cone_force_n(f, m, mu, arm),
             Kind::SlipServo => {
                 if slip_seen {
                     (self.command * 1.5 + 0.5).min(self.limits.n_max)

@@ -446,4 +446,50 @@ fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
     assert!((c.mean_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
     assert!((c.median_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
     assert!(stats::clairvoyant_constant("lift-hold", &sweeps[..1], &refs).is_none());
+    // At the hand's limit with N_max = 3 N: only a trial that no grip below 95 % of it
+    // (2.85 N) holds; for a 2.1 N hand (1.995 N), the 2 N trial is one too.
+    let limit = |n_max: f64| -> Vec<Option<bool>> {
+        refs.iter()
+            .map(|r| stats::at_limit(&sweeps, r, n_max))
+            .collect()
+    };
+    assert_eq!(
+        limit(3.0),
+        [Some(false), Some(false), Some(true), Some(false)]
+    );
+    assert_eq!(
+        limit(2.1),
+        [Some(false), Some(true), Some(true), Some(false)]
+    );
+    assert_eq!(stats::at_limit(&sweeps[..1], refs[2], 3.0), None);
+    // The rows count them, for the bench's hand (N_max = 20 N) and a grid of 1, 19 and
+    // 20 N: trials held from 1 N, from 19 N (95 % of N_max: at the limit), only at 20 N
+    // (at the limit), and none; softgrip's first setting drops the first two.
+    let sweeps = [
+        sweeps[0],
+        Sweep {
+            values: &[1.0, 19.0, 20.0],
+            ..sweeps[1]
+        },
+    ];
+    let mut results = [
+        trial(true, 1.0, [false, false, false]),
+        trial(true, 1.0, [true, false, false]),
+        trial(true, 1.0, [true, true, false]),
+        trial(false, 1.0, [true, true, true]),
+    ];
+    results[0].runs[0].dropped = true;
+    results[1].runs[0].dropped = true;
+    let refs: Vec<&TrialResult> = results.iter().collect();
+    let rows = stats::rows("twist", None, &sweeps, &refs);
+    assert_eq!(rows[0].at_limit, Some(2));
+    assert_eq!(
+        (rows[0].drops_holdable, rows[0].drops_at_limit),
+        (2, Some(1))
+    );
+    assert_eq!(rows[1].drops_at_limit, Some(0));
+    assert_eq!(
+        stats::rows("twist", None, &sweeps[..1], &refs)[0].at_limit,
+        None
+    );
 }

@@ -36,6 +36,8 @@ struct Row {
     holdable: u64,
     drops: u64,
     drops_holdable: u64,
+    /// Holdable trials dropped that are at the hand's limit (`None` before the field).
+    drops_at_limit: Option<u64>,
     ci_high: f64,
     force_over_oracle: f64,
 }
@@ -85,6 +87,7 @@ fn parse_row(r: &Value) -> Row {
         holdable: int("holdable"),
         drops: int("drops"),
         drops_holdable: int("drops_holdable"),
+        drops_at_limit: r["drops_at_limit"].as_u64(),
         ci_high: r["drop_rate_ci95"][1].as_f64().unwrap(),
         force_over_oracle: num("force_over_oracle"),
     }
@@ -300,6 +303,21 @@ fn render_claims(b: &Bench) -> String {
         s,
         " ({d}/{t} of the mu-mismatch trials with a slip sensor)."
     );
+    let at_limit: Vec<String> = FAMILIES
+        .iter()
+        .filter_map(|f| {
+            let r = b.row(f, &ours);
+            let l = r.drops_at_limit?;
+            (r.drops_holdable > 0).then(|| format!("{l} of the {} in {f}", r.drops_holdable))
+        })
+        .collect();
+    if !at_limit.is_empty() {
+        let _ = write!(
+            s,
+            " Of those drops, {} are trials at the hand's limit, which no constant grip below              95 % of N_max holds even when applied before the load comes (docs/bench.md).",
+            at_limit.join(", ")
+        );
+    }
     let mut wins = Vec::new();
     let mut losses = Vec::new();
     for f in FAMILIES {
@@ -470,9 +488,13 @@ fn render_results(b: &Bench) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        let limit = match r.drops_at_limit {
+            Some(l) if r.drops_holdable > 0 => format!(" ({l} at the hand's limit)"),
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "| `{f}` | {}/{}, {:.3} | {} | {beaten} of {} | {by} |",
+            "| `{f}` | {}/{}{limit}, {:.3} | {} | {beaten} of {} | {by} |",
             r.drops_holdable,
             r.holdable,
             r.force_over_oracle,
@@ -573,6 +595,19 @@ fn the_published_run_pools_seeds_on_the_brush_plant() {
             .map(|s| s.values.len())
             .sum();
         assert_eq!(rows, grid, "{f}");
+        // The run has the constant sweep, so every row tells its drops at the hand's limit,
+        // and those are some of its holdable drops.
+        for r in b.rows.iter().filter(|r| r.family == f) {
+            let l = r
+                .drops_at_limit
+                .unwrap_or_else(|| panic!("{f}: drops_at_limit"));
+            assert!(
+                l <= r.drops_holdable,
+                "{f} {}@{}",
+                r.controller,
+                r.knob_value
+            );
+        }
         // The split by sensor adds up to the row of bench.json.
         for r in b
             .rows
@@ -616,5 +651,17 @@ fn a_changed_run_changes_the_claim() {
     assert_ne!(before, render_claims(&b));
     let mut b = load();
     b.clairvoyant[0].1 += 0.01;
+    assert_ne!(before, render_claims(&b));
+    // The drops at the hand's limit are claimed too, wherever the default drops.
+    let mut b = load();
+    let f = FAMILIES
+        .iter()
+        .find(|f| b.row(f, &ours).drops_holdable > 0)
+        .expect("the published default drops somewhere");
+    for r in b.rows.iter_mut() {
+        if r.family == *f && r.controller == c && r.knob_value == v {
+            r.drops_at_limit = r.drops_at_limit.map(|l| l + 1);
+        }
+    }
     assert_ne!(before, render_claims(&b));
 }

@@ -9,39 +9,53 @@ use std::fmt::Write;
 use std::path::Path;
 
 /// The text table of one family's rows: controller, knob and value (`*` marks the
-/// default), drops of all trials, drops of the holdable ones, the drop rate with its
-/// Wilson 95 % interval [%], force over oracle [-], mean force [N], mean slip [mm].
+/// default), drops of all trials, drops of the holdable ones, drops of those at the
+/// hand's limit ([`AT_LIMIT_FRACTION`](super::stats::AT_LIMIT_FRACTION); `-` without a
+/// `constant` sweep), the drop rate with its Wilson 95 % interval [%], force over oracle
+/// [-], mean force [N], mean slip [mm].
 pub fn family_table(family: &str, rows: &[Row]) -> String {
     let mut s = String::new();
     let (trials, holdable) = rows.first().map_or((0, 0), |r| (r.trials, r.holdable));
+    let limit = rows.first().and_then(|r| r.at_limit).map_or(String::new(), |l| {
+        format!(
+            ", {l} of them at the hand's limit (no constant grip below {:.0} % of N_max holds them)",
+            100.0 * super::stats::AT_LIMIT_FRACTION
+        )
+    });
     let _ = writeln!(
         s,
-        "family {family}: {trials} trials, {holdable} holdable (constant at N_max holds them)"
+        "family {family}: {trials} trials, {holdable} holdable (constant at N_max holds them){limit}"
     );
     let _ = writeln!(
         s,
-        "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>19}  {:>9}  {:>10}  {:>9}",
+        "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>19}  {:>9}  {:>10}  {:>9}",
         "controller",
         "knob",
         "value",
         "drops",
         "drops (hold.)",
+        "(at limit)",
         "drop rate [95% CI]",
         "N/oracle",
         "mean N [N]",
         "slip [mm]"
     );
-    let _ = writeln!(s, "{}", "-".repeat(113));
+    let _ = writeln!(s, "{}", "-".repeat(126));
     for r in rows {
         let value = format!("{}{}", r.knob_value, if r.default { "*" } else { "" });
+        let at_limit = match (r.drops_at_limit, r.at_limit) {
+            (Some(d), Some(l)) => format!("{d}/{l}"),
+            _ => "-".to_string(),
+        };
         let _ = writeln!(
             s,
-            "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>5.1} % [{:>4.1}, {:>4.1}]  {:>9.3}  {:>10.3}  {:>9.3}",
+            "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>5.1} % [{:>4.1}, {:>4.1}]  {:>9.3}  {:>10.3}  {:>9.3}",
             r.controller,
             r.knob,
             value,
             format!("{}/{}", r.drops, r.trials),
             format!("{}/{}", r.drops_holdable, r.holdable),
+            at_limit,
             100.0 * r.drop_rate,
             100.0 * r.drop_rate_ci95[0],
             100.0 * r.drop_rate_ci95[1],

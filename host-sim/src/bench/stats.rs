@@ -2,6 +2,7 @@
 //! a Wilson 95 % interval), force over the oracle and slip, over the trials of one seed
 //! or of every seed pooled.
 
+use super::families::N_MAX_N;
 use super::sweep::{settings, Sweep, TrialResult};
 use crate::sim::controllers::ControllerKind;
 use serde::Serialize;
@@ -30,6 +31,13 @@ pub struct Row {
     pub drops: usize,
     /// Holdable trials dropped.
     pub drops_holdable: usize,
+    /// Holdable trials at the hand's limit ([`at_limit`]); `None` when the run has no
+    /// `constant` sweep to tell.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_limit: Option<usize>,
+    /// Holdable trials at the hand's limit that were dropped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drops_at_limit: Option<usize>,
     /// `drops/trials`.
     pub drop_rate: f64,
     /// Wilson score 95 % interval of the drop rate, `[low, high]`.
@@ -59,6 +67,46 @@ pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
     [(centre - half).max(0.0), (centre + half).min(1.0)]
 }
 
+/// A holdable trial is **at the hand's limit** when no constant grip of the grid below
+/// this fraction of `N_max` holds it, even one applied from the trial's start, before
+/// any load [-]. Such a trial leaves a controller that must see the load before it grips
+/// at most 5 % of force to spare: about the spread of the lab's own calibration of μ
+/// (table mode: 0.96–1.03 of the brush finger's onset on pure force, docs/bench-fingers.md),
+/// so no margin a controller can justify from its lab data tells it from a trial that
+/// `N_max` cannot hold. The tables count the drops on these trials apart.
+pub const AT_LIMIT_FRACTION: f64 = 0.95;
+
+/// The columns of the `constant` sweep's settings, in increasing force.
+fn constant_grid(sweeps: &[Sweep]) -> Vec<(usize, f64)> {
+    settings(sweeps)
+        .filter(|(_, sw, _)| sw.controller == ControllerKind::Constant)
+        .map(|(col, _, v)| (col, v))
+        .collect()
+}
+
+/// The least constant grip of `grid` (from [`constant_grid`]) that holds trial `r` [N],
+/// or `None` when none does.
+fn least_holding_constant(grid: &[(usize, f64)], r: &TrialResult) -> Option<f64> {
+    grid.iter()
+        .find(|(col, _)| !r.runs[*col].dropped)
+        .map(|(_, v)| *v)
+}
+
+/// Whether trial `r` is holdable and at the hand's limit ([`AT_LIMIT_FRACTION`]) for a
+/// hand of `n_max_n` [N], judged by the `constant` sweep of `sweeps`; `None` when there is
+/// none.
+pub fn at_limit(sweeps: &[Sweep], r: &TrialResult, n_max_n: f64) -> Option<bool> {
+    let grid = constant_grid(sweeps);
+    if grid.is_empty() {
+        return None;
+    }
+    Some(
+        r.holdable
+            && least_holding_constant(&grid, r)
+                .is_none_or(|least| least >= AT_LIMIT_FRACTION * n_max_n),
+    )
+}
+
 /// The rows of one family from its trials' results (of one seed, `seed`, or of every seed
 /// pooled, `None`), in the order of `sweeps`.
 pub fn rows(
@@ -70,15 +118,27 @@ pub fn rows(
     let mut out = Vec::new();
     let n = results.len();
     let holdable = results.iter().filter(|r| r.holdable).count();
+    let limit: Vec<Option<bool>> = results
+        .iter()
+        .map(|r| at_limit(sweeps, r, N_MAX_N))
+        .collect();
+    let at_limit_trials = limit
+        .first()
+        .copied()
+        .flatten()
+        .map(|_| limit.iter().flatten().filter(|x| **x).count());
     for (col, sw, v) in settings(sweeps) {
-        let (mut drops, mut drops_h) = (0, 0);
+        let (mut drops, mut drops_h, mut drops_l) = (0, 0, 0);
         let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for r in results {
+        for (r, limit) in results.iter().zip(&limit) {
             let run = &r.runs[col];
             if run.dropped {
                 drops += 1;
                 if r.holdable {
                     drops_h += 1;
+                }
+                if *limit == Some(true) {
+                    drops_l += 1;
                 }
             }
             ratio += run.mean_force_n / r.oracle_mean_n;
@@ -99,6 +159,8 @@ pub fn rows(
             holdable,
             drops,
             drops_holdable: drops_h,
+            at_limit: at_limit_trials,
+            drops_at_limit: at_limit_trials.map(|_| drops_l),
             drop_rate: mean(drops as f64),
             drop_rate_ci95: wilson95(drops, n),
             force_over_oracle: mean(ratio),
@@ -137,10 +199,7 @@ pub fn clairvoyant_constant(
     results: &[&TrialResult],
 ) -> Option<Clairvoyant> {
     // The grid's values increase, so its first setting that holds is the least grip.
-    let grid: Vec<usize> = settings(sweeps)
-        .filter(|(_, sw, _)| sw.controller == ControllerKind::Constant)
-        .map(|(col, _, _)| col)
-        .collect();
+    let grid: Vec<usize> = constant_grid(sweeps).iter().map(|(col, _)| *col).collect();
     if grid.is_empty() {
         return None;
     }

@@ -72,8 +72,8 @@ pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
 /// any load [-]. Such a trial leaves a controller that must see the load before it grips
 /// at most 5 % of force to spare: about the spread of the lab's own calibration of μ
 /// (table mode: 0.96–1.03 of the brush finger's onset on pure force, docs/bench-fingers.md),
-/// so no margin a controller can justify from its lab data tells it from a trial that
-/// `N_max` cannot hold. The tables count the drops on these trials apart.
+/// and it reaches `N_max` later than a grip that was there from the start. The tables
+/// count the drops on these trials apart; every other count keeps them.
 pub const AT_LIMIT_FRACTION: f64 = 0.95;
 
 /// The columns of the `constant` sweep's settings, in increasing force.

@@ -84,12 +84,17 @@ fn constant_grid(sweeps: &[Sweep]) -> Vec<(usize, f64)> {
         .collect()
 }
 
-/// The least constant grip of `grid` (from [`constant_grid`]) that holds trial `r` [N],
-/// or `None` when none does.
-fn least_holding_constant(grid: &[(usize, f64)], r: &TrialResult) -> Option<f64> {
-    grid.iter()
-        .find(|(col, _)| !r.runs[*col].dropped)
-        .map(|(_, v)| *v)
+/// The least constant grip of `grid` (from [`constant_grid`]) that holds trial `r`: its
+/// column and force [N], or `None` when none does. The grid's values increase, so its
+/// first setting that holds is the least grip.
+fn least_holding(grid: &[(usize, f64)], r: &TrialResult) -> Option<(usize, f64)> {
+    grid.iter().copied().find(|(col, _)| !r.runs[*col].dropped)
+}
+
+/// [`at_limit`] on a non-empty `grid` (from [`constant_grid`]).
+fn at_limit_on(grid: &[(usize, f64)], r: &TrialResult, n_max_n: f64) -> bool {
+    r.holdable
+        && least_holding(grid, r).is_none_or(|(_, least)| least >= AT_LIMIT_FRACTION * n_max_n)
 }
 
 /// Whether trial `r` is holdable and at the hand's limit ([`AT_LIMIT_FRACTION`]) for a
@@ -97,14 +102,7 @@ fn least_holding_constant(grid: &[(usize, f64)], r: &TrialResult) -> Option<f64>
 /// none.
 pub fn at_limit(sweeps: &[Sweep], r: &TrialResult, n_max_n: f64) -> Option<bool> {
     let grid = constant_grid(sweeps);
-    if grid.is_empty() {
-        return None;
-    }
-    Some(
-        r.holdable
-            && least_holding_constant(&grid, r)
-                .is_none_or(|least| least >= AT_LIMIT_FRACTION * n_max_n),
-    )
+    (!grid.is_empty()).then(|| at_limit_on(&grid, r, n_max_n))
 }
 
 /// The rows of one family from its trials' results (of one seed, `seed`, or of every seed
@@ -118,15 +116,12 @@ pub fn rows(
     let mut out = Vec::new();
     let n = results.len();
     let holdable = results.iter().filter(|r| r.holdable).count();
-    let limit: Vec<Option<bool>> = results
+    let grid = constant_grid(sweeps);
+    let limit: Vec<bool> = results
         .iter()
-        .map(|r| at_limit(sweeps, r, N_MAX_N))
+        .map(|r| !grid.is_empty() && at_limit_on(&grid, r, N_MAX_N))
         .collect();
-    let at_limit_trials = limit
-        .first()
-        .copied()
-        .flatten()
-        .map(|_| limit.iter().flatten().filter(|x| **x).count());
+    let at_limit_trials = (!grid.is_empty()).then(|| limit.iter().filter(|x| **x).count());
     for (col, sw, v) in settings(sweeps) {
         let (mut drops, mut drops_h, mut drops_l) = (0, 0, 0);
         let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
@@ -137,7 +132,7 @@ pub fn rows(
                 if r.holdable {
                     drops_h += 1;
                 }
-                if *limit == Some(true) {
+                if *limit {
                     drops_l += 1;
                 }
             }
@@ -198,8 +193,7 @@ pub fn clairvoyant_constant(
     sweeps: &[Sweep],
     results: &[&TrialResult],
 ) -> Option<Clairvoyant> {
-    // The grid's values increase, so its first setting that holds is the least grip.
-    let grid: Vec<usize> = constant_grid(sweeps).iter().map(|(col, _)| *col).collect();
+    let grid = constant_grid(sweeps);
     if grid.is_empty() {
         return None;
     }
@@ -207,10 +201,7 @@ pub fn clairvoyant_constant(
         .iter()
         .filter(|r| r.holdable)
         .filter_map(|r| {
-            grid.iter()
-                .map(|&col| &r.runs[col])
-                .find(|run| !run.dropped)
-                .map(|run| run.mean_force_n / r.oracle_mean_n)
+            least_holding(&grid, r).map(|(col, _)| r.runs[col].mean_force_n / r.oracle_mean_n)
         })
         .collect();
     if ratios.is_empty() {

@@ -63,8 +63,9 @@
 //! trough. The factor shows in [`TickOutput::margin`](super::TickOutput). On the brush
 //! finger's eight held-out bench seeds, table mode at a safety factor of 1.5 dropped 3
 //! `shake` trials of 240 with it and 12 without, and the bench's choice of the default
-//! moved from 1.75 to 1.5 at the same drops on its aims, while lift-hold, twist and
-//! faults pay the plain factor (docs/bench.md, "The default").
+//! moved from 1.75 to 1.5 at the same drops on its aims (sixteen held-out seeds later
+//! moved it to 1.6), while lift-hold, twist and faults pay the plain factor
+//! (docs/bench.md, "The default").
 //!
 //! Cost per tick: about fifteen multiplications and one division; the cycle detector
 //! adds a low-pass and two comparisons (a multiplication and an addition on a new

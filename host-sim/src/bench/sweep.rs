@@ -31,7 +31,7 @@ const DEFAULT_SAFETY: f64 = ControllerConfig::DEFAULT.safety;
 /// ([`super::default_choice::baseline_choices`], safety first on the front), over that
 /// baseline's own knob, on the same held-out run (docs/bench/heldout/; checked by
 /// `host-sim/tests/default_choice.rs`). `constant`'s force [N].
-pub const CONSTANT_DEFAULT_N: f64 = 19.5;
+pub const CONSTANT_DEFAULT_N: f64 = 20.0;
 /// `coulomb`'s default safety factor (held-out choice, as [`CONSTANT_DEFAULT_N`]).
 pub const COULOMB_DEFAULT_SAFETY: f64 = 3.0;
 /// `box`'s default safety factor (held-out choice, as [`CONSTANT_DEFAULT_N`]).

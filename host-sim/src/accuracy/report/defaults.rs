@@ -375,7 +375,7 @@ fn mode(c: &Ctx) -> Option<String> {
          them lands on the front is partly chance).{exact_text} **The numbers favour table \
          mode** wherever its tick fits the budget ({target_ticks}; budgets 5 000 and \
          2 000): the same safety for less force. Table mode is the default, at safety \
-         1.5, as the bench chose it on held-out seeds (docs/bench.md, \"The default\"); \
+         {default_safety}, as the bench chose it on held-out seeds (docs/bench.md, \"The default\"); \
          ellipse mode is the cheaper tick, whose error is on the safe side, for a part \
          whose budget has no room for table mode's.",
         time(me.tick_ns),
@@ -384,5 +384,6 @@ fn mode(c: &Ctx) -> Option<String> {
         share(mt.error()),
         on_front(&c.def_e),
         on_front(&c.def_t),
+        default_safety = softgrip::controller::ControllerConfig::DEFAULT.safety,
     ))
 }

@@ -44,7 +44,7 @@ fn pool() -> Vec<ControllerConfig> {
         ControllerConfig {
             actuator_lag_s: 0.02,
             actuator_slew_n_per_s: 300.0,
-            safety: 1.6,
+            safety: 1.9,
             ..d
         },
     ]

@@ -11,6 +11,7 @@ use clap::Parser;
 use host_sim::cmd::simulate::{run_cmd, SimulateArgs};
 use host_sim::link::handed::precomputes;
 use host_sim::sim::controllers::{builds, ControllerKind};
+use softgrip::controller::ControllerConfig;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -32,7 +33,13 @@ fn a_simulate_run_builds_each_controller_once_per_scene() {
         // The two scenes' controllers differ (otherwise the second scene's would be the
         // first's, kept: one precomputation for both).
         let text = match name {
-            "twist" => text.replace("[controller]\n", "[controller]\nsafety = 1.6\n"),
+            "twist" => text.replace(
+                "[controller]\n",
+                &format!(
+                    "[controller]\nsafety = {}\n",
+                    ControllerConfig::DEFAULT.safety + 0.25
+                ),
+            ),
             _ => text,
         };
         std::fs::write(scenes.join(format!("{name}.toml")), text).unwrap();

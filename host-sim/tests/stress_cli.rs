@@ -363,11 +363,12 @@ fn required_force_at_the_corners_of_the_domain() {
                             // micromath's sqrt errs by up to 6 % either way, differently
                             // for N_slip and N_req. An f32 solve stopped by its iteration
                             // cap (on this grid, 5.6 times coarser than the default) returns
-                            // its bracket's upper end, up to 0.14 % high (tests/controller.rs,
-                            // `the_f32_iteration_cap_...`): N_req may then exceed s·N_slip.
+                            // its bracket's upper end, at most 1 % high (tests/controller.rs,
+                            // `the_f32_iteration_cap_...`): N_req may then exceed s·N_slip
+                            // (by 0.27 % at `--ft 1e-9 --mn 0`, disc, ellipse, k = 1, s = 1.6).
                             let (rel, rel_up) = match (precision, math) {
                                 ("f64", _) => (1e-12, 1e-12),
-                                (_, "libm") => (1e-6, 2e-3),
+                                (_, "libm") => (1e-6, 1e-2),
                                 _ => (0.07, 0.07),
                             };
                             assert!(

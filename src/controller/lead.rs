@@ -67,9 +67,24 @@
 //! moved it to 1.6), while lift-hold, twist and faults pay the plain factor
 //! (docs/bench.md, "The default").
 //!
+//! **Steady loads.** The margin a rising load needs is spent while it rises: on the
+//! brush finger the lift's drops are turns of the object during the lift, and once the
+//! load is steady, safety factors from 1 hold with no further turn (docs/bench.md, "Where
+//! lift-hold's margin goes"). Paying the lift's margin through the whole hold costs
+//! force for nothing. So once the filtered `N_slip` has stayed within a swing's depth
+//! (as above) of where it settled for [`STEADY_HOLD_S`], and the load does not cycle,
+//! the factor on the safety factor is [`STEADY_SAFETY_FACTOR`]; the first excursion past
+//! that depth, up or down, ends it on the same tick. The controller never asks less than
+//! `N_slip` for it: the product of the safety factor and every factor on it is floored at
+//! 1. Nor does it trim a margin that a slip signal raised, or a belief `μ̂` that a slip
+//! lowered: the steady factor waits until the slip response has relaxed back to its
+//! configured state ([`slip`](super::slip)). ([`Controller`](super::Controller) applies
+//! both.)
+//!
 //! Cost per tick: about fifteen multiplications and one division; the cycle detector
 //! adds a low-pass and two comparisons (a multiplication and an addition on a new
-//! extreme).
+//! extreme), the steady detector a multiplication, two subtractions and two
+//! comparisons.
 
 use crate::real::Real;
 
@@ -86,6 +101,15 @@ pub const SWING_WINDOW_S: f64 = 0.5;
 /// The factor on the safety factor while the load cycles [-]: see the module's docs,
 /// "Cyclic loads". Chosen on held-out seeds (docs/bench.md, "The default").
 pub const CYCLIC_SAFETY_FACTOR: f64 = 1.45;
+
+/// The factor on the safety factor while the load is steady [-]: see the module's docs,
+/// "Steady loads". Set on bench seeds 5001 to 5004, apart from the held-out and the
+/// scoring seeds (docs/bench.md, "A steady margin").
+pub const STEADY_SAFETY_FACTOR: f64 = 0.85;
+
+/// How long the filtered `N_slip` must stay within a swing's depth of where it settled
+/// before the load counts as steady [s].
+pub const STEADY_HOLD_S: f64 = 0.3;
 
 /// The depth of a swing that counts as a turn of the load, as a fraction of the swing's
 /// extreme (the filtered requirement at its top or bottom) [-].
@@ -107,6 +131,8 @@ pub(crate) struct Lead<T> {
     cyclic_factor: T,
     cycle_depth: T,
     cycle_floor: T,
+    steady_factor: T,
+    steady_ticks: u64,
     // State.
     started: bool,
     level: T,
@@ -129,6 +155,10 @@ pub(crate) struct Lead<T> {
     swing_extreme: T,
     /// The level past which the filtered requirement turns.
     swing_turn: T,
+    /// Where the filtered `N_slip` settled: the steady detector's anchor.
+    steady_level: T,
+    /// The load is steady while `clock` is at or past this.
+    steady_from: u64,
 }
 
 impl<T: Real> Lead<T> {
@@ -136,6 +166,7 @@ impl<T: Real> Lead<T> {
     /// [`CYCLE_DEPTH_FLOOR_N`] of load in `N_slip`'s units).
     pub(crate) fn new(tick_period_s: f64, mu: f64) -> Self {
         let w = libm::ceil(SWING_WINDOW_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
+        let steady = libm::ceil(STEADY_HOLD_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
         Self {
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             alpha_per_s: T::of(1.0 / (FILTER_TAU_S + tick_period_s)),
@@ -145,6 +176,8 @@ impl<T: Real> Lead<T> {
             cyclic_factor: T::of(CYCLIC_SAFETY_FACTOR),
             cycle_depth: T::of(CYCLE_DEPTH),
             cycle_floor: T::of(CYCLE_DEPTH_FLOOR_N / mu),
+            steady_factor: T::of(STEADY_SAFETY_FACTOR),
+            steady_ticks: steady as u64,
             started: false,
             level: T::zero(),
             load_level: T::zero(),
@@ -159,6 +192,8 @@ impl<T: Real> Lead<T> {
             swing_falling: false,
             swing_extreme: T::zero(),
             swing_turn: T::zero(),
+            steady_level: T::zero(),
+            steady_from: u64::MAX,
         }
     }
 
@@ -175,6 +210,7 @@ impl<T: Real> Lead<T> {
         self.swing_falling = false;
         self.swing_extreme = T::zero();
         self.swing_turn = T::zero();
+        self.steady_from = u64::MAX;
     }
 
     /// The change of the filtered requirement from a swing's extreme `extreme_n` that
@@ -185,11 +221,14 @@ impl<T: Real> Lead<T> {
     }
 
     /// The factor on the safety factor: [`CYCLIC_SAFETY_FACTOR`] while the load cycles
-    /// (see the module's docs, "Cyclic loads"), 1 otherwise.
+    /// (see the module's docs, "Cyclic loads"), else [`STEADY_SAFETY_FACTOR`] while it
+    /// is steady ("Steady loads"), 1 otherwise.
     #[inline]
     pub(crate) fn safety_factor(&self) -> T {
         if self.clock < self.cycle_until {
             self.cyclic_factor
+        } else if self.clock >= self.steady_from {
+            self.steady_factor
         } else {
             T::one()
         }
@@ -205,6 +244,8 @@ impl<T: Real> Lead<T> {
             self.started = true;
             self.level = required_n;
             self.load_level = n_slip_n;
+            self.steady_level = n_slip_n;
+            self.steady_from = self.clock + self.steady_ticks;
             return required_n;
         }
         self.clock += 1;
@@ -236,6 +277,13 @@ impl<T: Real> Lead<T> {
         // extreme: the Cortex-M4F's tick budget.)
         let load = self.load_level + (n_slip_n - self.load_level) * self.alpha;
         self.load_level = load;
+        // The load is steady once it has stayed within a swing's depth of where it
+        // settled for the hold; an excursion past that depth settles it anew.
+        let band = self.swing_depth(self.steady_level);
+        if load - self.steady_level > band || self.steady_level - load > band {
+            self.steady_level = load;
+            self.steady_from = clock + self.steady_ticks;
+        }
         if self.swing_falling {
             if load < self.swing_extreme {
                 self.swing_extreme = load;

@@ -221,6 +221,13 @@ impl<T: Real> SlipResponse<T> {
         self.margin
     }
 
+    /// Whether no slip signal has been seen since the margin and `μ̂` last snapped back to
+    /// their configured values (or ever).
+    #[inline]
+    pub(crate) fn pristine(&self) -> bool {
+        self.pristine
+    }
+
     /// `safety × margin`, exactly `safety` while no slip has been seen.
     #[inline]
     pub(crate) fn safety(&self, safety: T) -> T {

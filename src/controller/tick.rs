@@ -73,7 +73,10 @@ pub struct TickOutput<T> {
     pub mu_estimate: T,
     /// The margin multiplying the safety factor: 1 until a slip signal raises it (see
     /// [`slip`](super::slip)), times [`CYCLIC_SAFETY_FACTOR`](super::lead::CYCLIC_SAFETY_FACTOR)
-    /// while the load cycles (see [`lead`](super::lead), "Cyclic loads").
+    /// while the load cycles (see [`lead`](super::lead), "Cyclic loads") or
+    /// [`STEADY_SAFETY_FACTOR`](super::lead::STEADY_SAFETY_FACTOR) while it is steady
+    /// ("Steady loads"). The force asked is `N_req` at the safety factor times this
+    /// margin, floored at 1: never below `N_slip`.
     pub margin: T,
 }
 
@@ -309,9 +312,22 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     }
 
     /// The margin multiplying the safety factor: the slip response's (see
-    /// [`slip`](super::slip)) times the cyclic load's (see [`lead`](super::lead)).
+    /// [`slip`](super::slip)) times the cyclic or the steady load's (see [`lead`](super::lead)).
     pub fn margin(&self) -> T {
-        self.slip_response.margin() * self.lead.safety_factor()
+        self.slip_response.margin() * self.load_factor()
+    }
+
+    /// The load's factor on the safety factor (see [`lead`](super::lead)). The steady
+    /// load's, below 1, only while the slip response is pristine: a contact that has
+    /// slipped keeps its whole margin until the slip is forgotten.
+    #[inline]
+    fn load_factor(&self) -> T {
+        let factor = self.lead.safety_factor();
+        if factor < T::one() && !self.slip_response.pristine() {
+            T::one()
+        } else {
+            factor
+        }
     }
 
     /// Measurements refused for their timestamp so far (saturating).
@@ -381,8 +397,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             (f, mz) = (ft * inv_mu, mn * inv_mu);
             utilisation = self.capacity.utilisation::<M>(f, mz, m.normal_force_n);
         }
-        let cyclic = self.lead.safety_factor();
-        let safety = self.slip_response.safety(self.safety) * cyclic;
+        // The cyclic or the steady load's factor; never below `N_slip` (a steady factor
+        // below 1 on a safety factor near 1).
+        let factor = self.load_factor();
+        let safety = greater(self.slip_response.safety(self.safety) * factor, T::one());
         let slip = self
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);
@@ -423,7 +441,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             fault_active: false,
             iterations: slip.iterations.saturating_add(req.iterations),
             mu_estimate: self.slip_response.mu_estimate(),
-            margin: self.slip_response.margin() * cyclic,
+            margin: self.slip_response.margin() * factor,
         };
         self.last = Some(out);
         out

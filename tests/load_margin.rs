@@ -1,9 +1,14 @@
-//! The cyclic load's margin (`controller::lead`, "Cyclic loads"): a shake multiplies the
-//! safety factor by `CYCLIC_SAFETY_FACTOR` from its second trough until twice
-//! `SWING_WINDOW_S` after its last, while a steady noisy hold, one lift, one twist, a slow sway and a
-//! ripple within sensor noise keep the configured factor on every tick.
+//! The load's margins (`controller::lead`, "Cyclic loads" and "Steady loads").
+//!
+//! A shake multiplies the safety factor by `CYCLIC_SAFETY_FACTOR` from its second trough
+//! until twice `SWING_WINDOW_S` after its last, while a steady noisy hold, one lift, one
+//! twist, a slow sway and a ripple within sensor noise never do. A load that stays within
+//! a swing's depth for `STEADY_HOLD_S` multiplies it by `STEADY_SAFETY_FACTOR` until it
+//! moves past that depth, and the force asked never falls below `N_slip`.
 
-use softgrip::controller::lead::{CYCLIC_SAFETY_FACTOR, SWING_WINDOW_S};
+use softgrip::controller::lead::{
+    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_SAFETY_FACTOR, SWING_WINDOW_S,
+};
 use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 use std::f64::consts::TAU;
 
@@ -24,14 +29,17 @@ impl Noise {
     }
 }
 
-/// One tick's record: the time [s], the margin the tick reported and its `N_req` over
-/// `N_req` of the true load at the configured safety factor, and at that times
-/// `CYCLIC_SAFETY_FACTOR`.
+/// One tick's record: the time [s], the margin the tick reported, its `N_req` over
+/// `N_req` of the true load at the configured safety factor, at that times
+/// `CYCLIC_SAFETY_FACTOR` and at that times `STEADY_SAFETY_FACTOR` (floored at 1), and
+/// its `N_req` over its `N_slip`.
 struct Tick {
     t_s: f64,
     margin: f64,
     req_over_plain: f64,
     req_over_cyclic: f64,
+    req_over_steady: f64,
+    req_over_slip: f64,
 }
 
 /// The moment's noise [N·m]: the simulator's `sensor_noise` default.
@@ -67,11 +75,17 @@ fn run(
             .required_force(ft, mn, cfg.safety * CYCLIC_SAFETY_FACTOR)
             .unwrap()
             .force_n;
+        let steady = c
+            .required_force(ft, mn, (cfg.safety * STEADY_SAFETY_FACTOR).max(1.0))
+            .unwrap()
+            .force_n;
         out.push(Tick {
             t_s: t,
             margin: o.margin,
             req_over_plain: o.required_n / plain,
             req_over_cyclic: o.required_n / cyclic,
+            req_over_steady: o.required_n / steady,
+            req_over_slip: o.required_n / o.n_slip_n,
         });
     }
     out
@@ -200,12 +214,108 @@ fn a_shake_cycles_from_its_second_trough_until_a_window_after_it() {
                 );
             }
             // The shake's last trough lies within one period of its end; two windows after
-            // that (and the filter's few milliseconds) the plain factor is back.
+            // that (and the filter's few milliseconds) the cyclic factor has ended. The
+            // load has been steady since the shake ended, so the steady factor follows.
             let back = 2.5 + 1.0 / hz + 2.0 * SWING_WINDOW_S + 0.03;
             assert!(ticks.iter().filter(|k| k.t_s > back).count() > 500);
             for k in ticks.iter().filter(|k| k.t_s > back) {
+                assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
+                assert!((k.req_over_steady - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
+            }
+        }
+    }
+}
+
+/// A weight of 1.5 N (and 0.015 N·m) held from the start, stepped at 1.5 s to
+/// `1.5 · step` N over `ramp_s`.
+fn stepped_hold(step: f64, ramp_s: f64, t: f64) -> (f64, f64) {
+    let x = ((t - 1.5) / ramp_s).clamp(0.0, 1.0);
+    let w = 1.5 * (1.0 + (step - 1.0) * x);
+    (w, 0.01 * w)
+}
+
+#[test]
+fn a_steady_hold_earns_the_steady_factor_after_the_hold_time() {
+    for cfg in configs() {
+        let what = format!("{:?} lag {}", cfg.mode, cfg.actuator_lag_s);
+        let ticks = run(cfg, 1.4, 0.02, |t| stepped_hold(1.0, 0.1, t));
+        // The load settles within the filter's few milliseconds of the start.
+        for k in &ticks {
+            if k.t_s < STEADY_HOLD_S - 0.002 {
                 assert_eq!(k.margin, 1.0, "{what}: at {} s", k.t_s);
                 assert!((k.req_over_plain - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
+            } else if k.t_s > STEADY_HOLD_S + 0.03 {
+                assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
+                assert!((k.req_over_steady - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
+                assert!(k.req_over_plain < 0.9, "{what}: {}", k.t_s);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_load_that_moves_past_a_swing_depth_ends_the_steady_factor() {
+    // Up by 30 %, up by 3 × (a second lift), down to 60 % (a release), each over 50 ms
+    // at 1.5 s; the steady factor is back a hold's time after the load settles again.
+    for cfg in configs() {
+        for step in [1.3, 3.0, 0.6] {
+            let what = format!("{:?} lag {}, × {step}", cfg.mode, cfg.actuator_lag_s);
+            let ticks = run(cfg, 3.0, 0.02, |t| stepped_hold(step, 0.05, t));
+            let before = ticks.iter().find(|k| k.t_s > 1.49).unwrap();
+            assert_eq!(before.margin, STEADY_SAFETY_FACTOR, "{what}");
+            // The filtered load passes the depth (10 % and the noise floor) within the
+            // ramp and the filter's delay.
+            let depth = CYCLE_DEPTH + 0.1 / 1.5;
+            let crossed_s = 1.5 + 0.05 * depth / (step - 1.0).abs() + 0.02;
+            let ended = ticks
+                .iter()
+                .find(|k| k.t_s > 1.5 && k.margin == 1.0)
+                .unwrap_or_else(|| panic!("{what}: never ended"));
+            assert!(ended.t_s < crossed_s, "{what}: ended at {} s", ended.t_s);
+            // Then the configured factor holds for at least a hold time (the load may settle
+            // within a depth of where it passed it, before the ramp's end), and the steady
+            // factor is back within two hold times of the ramp's end.
+            for k in ticks
+                .iter()
+                .filter(|k| k.t_s >= ended.t_s && k.t_s < ended.t_s + STEADY_HOLD_S - 0.002)
+            {
+                assert_eq!(k.margin, 1.0, "{what}: at {} s", k.t_s);
+            }
+            // (A settled load within the sensor noise of a depth from where it passed it
+            // may start the hold once more.)
+            for k in ticks
+                .iter()
+                .filter(|k| k.t_s > 1.55 + 2.0 * STEADY_HOLD_S + 0.05)
+            {
+                assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_steady_factor_never_asks_less_than_n_slip() {
+    // At safety factors where `s × STEADY_SAFETY_FACTOR` < 1 the force asked is `N_slip`;
+    // above, `N_req` at the product.
+    for cfg in configs() {
+        for safety in [1.0, 1.2, 1.0 / STEADY_SAFETY_FACTOR + 0.05, 2.0] {
+            let cfg = ControllerConfig { safety, ..cfg };
+            let what = format!("{:?} lag {}, s {safety}", cfg.mode, cfg.actuator_lag_s);
+            let ticks = run(cfg, 1.5, 0.02, |t| stepped_hold(1.0, 0.1, t));
+            let steady: Vec<_> = ticks.iter().filter(|k| k.t_s > 1.0).collect();
+            for k in &steady {
+                assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}");
+                assert!(k.req_over_slip >= 1.0 - 1e-9, "{what}: {}", k.req_over_slip);
+                assert!((k.req_over_steady - 1.0).abs() < 0.05, "{what}");
+                if safety * STEADY_SAFETY_FACTOR <= 1.0 {
+                    assert!(
+                        (k.req_over_slip - 1.0).abs() < 1e-6,
+                        "{what}: {}",
+                        k.req_over_slip
+                    );
+                } else {
+                    assert!(k.req_over_slip > 1.0 + 1e-3, "{what}: {}", k.req_over_slip);
+                }
             }
         }
     }

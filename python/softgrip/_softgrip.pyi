@@ -38,7 +38,8 @@ class TickStatus:
         """The friction coefficient the controller believes now."""
     @property
     def margin(self) -> float:
-        """The margin multiplying the safety factor (1 until a slip signal)."""
+        """The margin multiplying the safety factor: a slip signal raises it, a cycling load
+        multiplies it by 1.45 and a steady one by 0.85 (the safety asked is never below 1)."""
 
 class Controller:
     """The slip-prevention controller (f64 precompute and tick).

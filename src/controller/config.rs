@@ -196,6 +196,9 @@ with_schema! {
         /// the disc).
         pub half_length_m: f64,
         /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
+        /// While the load cycles it is multiplied by the lead's `CYCLIC_SAFETY_FACTOR`;
+        /// once the load has been steady for `STEADY_HOLD_S` (and no slip is remembered)
+        /// by `STEADY_SAFETY_FACTOR`, the product never below 1 (`controller::lead`).
         pub safety: f64,
         /// Least commanded normal force `N_min > 0` [N].
         pub n_min_n: f64,
@@ -263,7 +266,8 @@ impl ControllerConfig {
     /// `s = 1.6`, are the ones the bench chose on sixteen held-out seeds, safety first on
     /// the front of drops against force (`host-sim` `bench::default_choice`;
     /// docs/bench.md, "The default"); a cycling load gets `s` times the lead's
-    /// `CYCLIC_SAFETY_FACTOR` (1.45). Eight of those seeds alone chose `s = 1.5`; before
+    /// `CYCLIC_SAFETY_FACTOR` (1.45), a steady one `s` times `STEADY_SAFETY_FACTOR`
+    /// (0.85). Eight of those seeds alone chose `s = 1.5`; before
     /// that factor they chose `s = 1.75`, and ellipse mode at `s = 1.3` was the default
     /// before that.
     pub const DEFAULT: Self = Self {

@@ -283,7 +283,9 @@ impl<T: Real> Lead<T> {
         // The load is steady once it has stayed within a swing's depth of where it
         // settled for the hold; an excursion past that depth settles it anew.
         let band = self.swing_depth(self.steady_level);
-        if load - self.steady_level > band || self.steady_level - load > band {
+        if load - self.steady_level > self.cycle_floor * T::of(0.5)
+            || self.steady_level - load > band
+        {
             self.steady_level = load;
             self.steady_from = clock + self.steady_ticks;
         }

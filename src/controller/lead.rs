@@ -73,10 +73,13 @@
 //! turn (docs/bench.md, "The default"). Paying the lift's margin through the whole hold
 //! costs force for little. So once the filtered `N_slip` has stayed within a swing's depth
 //! (as above) of where it settled for [`STEADY_HOLD_S`], and the load does not cycle,
-//! the factor on the safety factor is [`STEADY_SAFETY_FACTOR`]; the first excursion past
-//! that depth, up or down, ends it on the same tick. The controller never asks less than
-//! `N_slip` for it: the product of the safety factor and every factor on it is floored at
-//! 1. Nor does it trim a margin that a slip signal raised, or a belief `μ̂` that a slip
+//! the factor on the safety factor is [`STEADY_SAFETY_FACTOR`]. A fall past that depth,
+//! or a rise of more than [`STEADY_RISE_N`] of load, ends it on the same tick. The rise
+//! must end it early: through a lagging actuator the command would otherwise climb the
+//! trimmed margin and the rise together, and a lift from a steady hold through an untold
+//! 25 ms actuator fell 0.43 N short of `N_slip` when a rise needed a whole swing's depth
+//! (`tests/actuator_id.rs`). The controller never asks less than `N_slip` for it: the
+//! product of the safety factor and every factor on it is floored at one. Nor does it trim a margin that a slip signal raised, or a belief `μ̂` that a slip
 //! lowered: the steady factor waits until the slip response has relaxed back to its
 //! configured state ([`slip`](super::slip)). ([`Controller`](super::Controller) applies
 //! both.) What it gives up: a steady hold covers a smaller error of `μ`. At `s = 1.6` it
@@ -85,7 +88,7 @@
 //!
 //! Cost per tick: about fifteen multiplications and one division; the cycle detector
 //! adds a low-pass and two comparisons (a multiplication and an addition on a new
-//! extreme), the steady detector a multiplication, two subtractions and two
+//! extreme), the steady detector a multiplication, an addition, two subtractions and two
 //! comparisons.
 
 use crate::real::Real;
@@ -114,6 +117,12 @@ pub const STEADY_SAFETY_FACTOR: f64 = 0.85;
 /// before the load counts as steady [s].
 pub const STEADY_HOLD_S: f64 = 0.3;
 
+/// The rise of load that ends a steady hold [N], in `N_slip`'s units once divided by
+/// `μ`: half of [`CYCLE_DEPTH_FLOOR_N`], above the filtered sensor noise of a steady hold
+/// (`tests/load_margin.rs`) and below what a lift through a lagging actuator can climb
+/// unseen (`tests/actuator_id.rs`; a quarter of the floor halved that shortfall, no more).
+pub const STEADY_RISE_N: f64 = 0.05;
+
 /// The depth of a swing that counts as a turn of the load, as a fraction of the swing's
 /// extreme (the filtered requirement at its top or bottom) [-].
 pub const CYCLE_DEPTH: f64 = 0.1;
@@ -135,6 +144,7 @@ pub(crate) struct Lead<T> {
     cycle_depth: T,
     cycle_floor: T,
     steady_factor: T,
+    steady_rise: T,
     steady_ticks: u64,
     // State.
     started: bool,
@@ -180,6 +190,7 @@ impl<T: Real> Lead<T> {
             cycle_depth: T::of(CYCLE_DEPTH),
             cycle_floor: T::of(CYCLE_DEPTH_FLOOR_N / mu),
             steady_factor: T::of(STEADY_SAFETY_FACTOR),
+            steady_rise: T::of(STEADY_RISE_N / mu),
             steady_ticks: steady as u64,
             started: false,
             level: T::zero(),
@@ -280,11 +291,10 @@ impl<T: Real> Lead<T> {
         // extreme: the Cortex-M4F's tick budget.)
         let load = self.load_level + (n_slip_n - self.load_level) * self.alpha;
         self.load_level = load;
-        // The load is steady once it has stayed within a swing's depth of where it
-        // settled for the hold; an excursion past that depth settles it anew.
-        let band = self.swing_depth(self.steady_level);
-        if load - self.steady_level > self.cycle_floor * T::of(0.5)
-            || self.steady_level - load > band
+        // The load is steady once it has stayed near where it settled for the hold: a
+        // fall past a swing's depth, or a rise past `STEADY_RISE_N`, settles it anew.
+        if load - self.steady_level > self.steady_rise
+            || self.steady_level - load > self.swing_depth(self.steady_level)
         {
             self.steady_level = load;
             self.steady_from = clock + self.steady_ticks;

@@ -4,10 +4,12 @@
 //! until twice `SWING_WINDOW_S` after its last, while a steady noisy hold, one lift, one
 //! twist, a slow sway and a ripple within sensor noise never do. A load that stays within
 //! a swing's depth for `STEADY_HOLD_S` multiplies it by `STEADY_SAFETY_FACTOR` until it
-//! moves past that depth, and the force asked never falls below `N_slip`.
+//! falls past that depth or rises by more than `STEADY_RISE_N`, and the force asked never
+//! falls below `N_slip`.
 
 use softgrip::controller::lead::{
-    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_SAFETY_FACTOR, SWING_WINDOW_S,
+    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_RISE_N, STEADY_SAFETY_FACTOR,
+    SWING_WINDOW_S,
 };
 use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 use std::f64::consts::TAU;
@@ -288,6 +290,34 @@ fn a_load_that_moves_past_a_swing_depth_ends_the_steady_factor() {
                 .filter(|k| k.t_s > 1.55 + 2.0 * STEADY_HOLD_S + 0.05)
             {
                 assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_small_rise_ends_the_steady_factor_and_a_small_fall_does_not() {
+    // A rise of 5 % of 1.5 N (0.075 N of load, more than `STEADY_RISE_N` but less than a
+    // swing's depth) ends the steady factor within the ramp and the filter's delay: a
+    // rising load gets its whole margin back before it climbs further. The same fall
+    // keeps it.
+    assert!(0.075 > STEADY_RISE_N && 0.075 < CYCLE_DEPTH * 1.5 + 0.1);
+    for cfg in configs() {
+        for step in [1.05, 0.95] {
+            let what = format!("{:?} lag {}, × {step}", cfg.mode, cfg.actuator_lag_s);
+            let ticks = run(cfg, 2.2, 0.02, |t| stepped_hold(step, 0.05, t));
+            let before = ticks.iter().find(|k| k.t_s > 1.49).unwrap();
+            assert_eq!(before.margin, STEADY_SAFETY_FACTOR, "{what}");
+            let ended = ticks.iter().find(|k| k.t_s > 1.5 && k.margin == 1.0);
+            if step > 1.0 {
+                let ended = ended.unwrap_or_else(|| panic!("{what}: never ended"));
+                assert!(
+                    ended.t_s < 1.5 + 0.05 + 0.02,
+                    "{what}: ended at {} s",
+                    ended.t_s
+                );
+            } else {
+                assert!(ended.is_none(), "{what}: ended at {} s", ended.unwrap().t_s);
             }
         }
     }

@@ -301,7 +301,7 @@ fn a_small_rise_ends_the_steady_factor_and_a_small_fall_does_not() {
     // swing's depth) ends the steady factor within the ramp and the filter's delay: a
     // rising load gets its whole margin back before it climbs further. The same fall
     // keeps it.
-    assert!(0.075 > STEADY_RISE_N && 0.075 < CYCLE_DEPTH * 1.5 + 0.1);
+    const { assert!(0.075 > STEADY_RISE_N && 0.075 < CYCLE_DEPTH * 1.5 + 0.1) };
     for cfg in configs() {
         for step in [1.05, 0.95] {
             let what = format!("{:?} lag {}, × {step}", cfg.mode, cfg.actuator_lag_s);

@@ -14,22 +14,9 @@ use softgrip::controller::lead::{
 use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 use std::f64::consts::TAU;
 
-/// A seeded normal variate (Box–Muller over a 64-bit LCG).
-struct Noise(u64);
-
-impl Noise {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
+#[path = "common/noise.rs"]
+mod noise;
+use noise::Noise;
 
 /// One tick's record: the time [s], the margin the tick reported, its `N_req` over
 /// `N_req` of the true load at the configured safety factor, at that times

@@ -493,3 +493,64 @@ fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
         None
     );
 }
+
+/// A drop is a slide past 10 mm or a turn past 0.2 rad, and slip stops accumulating at
+/// the drop: the rows count the holdable drops with at most 10 mm of slide as turns, and
+/// the family's turn line sums them per controller over its settings.
+#[test]
+fn a_drop_with_less_than_a_slides_distance_is_counted_as_a_turn() {
+    use host_sim::bench::report;
+    use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
+    use host_sim::sim::controllers::ControllerKind;
+    use host_sim::sim::run::DROP_DISTANCE_M;
+    let sweeps = [Sweep {
+        controller: ControllerKind::SoftgripTable,
+        knob: "safety",
+        values: &[1.0, 2.0],
+        default: 2.0,
+    }];
+    let run = |dropped: bool, slide_m: f64| RunRow {
+        dropped,
+        slip_events: 1,
+        slip_distance_m: slide_m,
+        mean_force_n: 1.0,
+        peak_force_n: 1.0,
+    };
+    let trial = |holdable: bool, runs: [RunRow; 2]| TrialResult {
+        true_mu: 1.0,
+        mu_ratio: 1.0,
+        sensor: false,
+        holdable,
+        oracle_mean_n: 1.0,
+        runs: runs.to_vec(),
+    };
+    let results = [
+        // Lost by sliding 10 mm (it may have turned too): a slide.
+        trial(true, [run(true, 1.5 * DROP_DISTANCE_M), run(false, 0.0)]),
+        // Lost with 3 mm of slide: only the turn can have dropped it.
+        trial(true, [run(true, 0.003), run(true, DROP_DISTANCE_M)]),
+        // Slid 4 mm and held: no drop, no turn.
+        trial(true, [run(false, 0.004), run(false, 0.004)]),
+        // Not holdable: counted in the drops, not in the holdable ones nor the turns.
+        trial(false, [run(true, 0.001), run(true, 0.001)]),
+    ];
+    let refs: Vec<&TrialResult> = results.iter().collect();
+    let rows = stats::rows("twist", None, &sweeps, &refs);
+    let counts: Vec<_> = rows
+        .iter()
+        .map(|r| (r.drops, r.drops_holdable, r.drops_turned))
+        .collect();
+    assert_eq!(counts, [(3, 2, 1), (2, 1, 1)]);
+    assert!(!stats::lost_by_turning(&run(false, 0.0)));
+    assert_eq!(
+        report::turn_line("twist", &rows),
+        "twist: holdable drops that were turns past 0.2 rad, not slides, over every \
+         setting: softgrip-table 2/3\n"
+    );
+    let held = [trial(true, [run(false, 0.0), run(false, 0.0)])];
+    let refs: Vec<&TrialResult> = held.iter().collect();
+    assert_eq!(
+        report::turn_line("twist", &stats::rows("twist", None, &sweeps, &refs)),
+        ""
+    );
+}

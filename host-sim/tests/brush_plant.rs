@@ -1,7 +1,8 @@
 //! The brush finger (host-sim/src/brush): closed forms of the Winkler cylinder, full-slip
 //! limits against brute-force sums over its own elements, convergence in the element
 //! count and the time step, no force without a displacement history, dissipation over a
-//! stick–slip cycle, the skew of the pressure centre, non-finite inputs, and the scene
+//! stick–slip cycle, the skew of the pressure centre, the twist a grip keeps when it eases
+//! and comes back under a moment, non-finite inputs, and the scene
 //! wiring (`[finger] model = "brush"`).
 
 use host_sim::brush::bristles::Pose;
@@ -395,4 +396,60 @@ fn brush_scene_keys_are_checked_by_name() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("finger.c") && e.contains("lab data"), "{e}");
+}
+
+/// The lock-in of a soft grip's twist under a sustained moment: the grip eases and comes
+/// back. While it eases, the patch shrinks, its rim elements unload (their bristles let
+/// go) and the rest twist further; when it comes back, the rim elements load again with
+/// no stretch at the twisted pose, so part of that twist stays as a turn of the grip,
+/// though the moment stays at 60 % of the torsion limit of the eased grip. A grip held
+/// steady under the same moment barely turns; a deeper easing locks in more, while
+/// repeating the same easing adds little (the rim reattaches at the same twist). This is
+/// how the bench's drops happen below gross slip (turns past 0.2 rad; docs/bench.md,
+/// "What the drops are"): a grip that falls and rises under a moment pays in turn.
+#[test]
+fn a_grip_that_eases_and_comes_back_under_a_moment_keeps_part_of_the_twist() {
+    let f = finger(BrushSettings::default());
+    let high = 6.0;
+    let mut c = f.contact();
+    c.press(2.0, 0.0);
+    let moment = 0.6 * c.full_slip_limits().1;
+    let dt = 1e-3;
+    // The moment rises over 50 ms and stays; from 0.2 s the grip eases to `low` and comes
+    // back `dips` times (a smooth 0.1 s dip each), then holds to 0.7 s.
+    let turn = |dips: usize, low: f64| {
+        let mut plant = f.plant(0.1, 2e-4);
+        let mut last = 0.0;
+        for k in 0..700 {
+            let t = k as f64 * dt;
+            let m = moment * (t / 0.05).min(1.0);
+            let x = (t - 0.2) / 0.1;
+            let ease = if x > 0.0 && x < dips as f64 {
+                (std::f64::consts::PI * x.fract()).sin()
+            } else {
+                0.0
+            };
+            let r = plant.step(high - (high - low) * ease, [0.0, 0.0], m, dt);
+            assert!(!r.gross_slip, "t {t}: the moment stays inside the limit");
+            last = r.slip_rotation_rad.abs();
+        }
+        last
+    };
+    let steady = turn(0, 3.0);
+    let (to_3, to_2) = (turn(1, 3.0), turn(1, 2.0));
+    let thrice = turn(3, 3.0);
+    eprintln!(
+        "moment {moment:.4} N·m; turn held at 6 N {steady:.4} rad; eased to 3 N once \
+         {to_3:.4}, three times {thrice:.4}; to 2 N once {to_2:.4} rad"
+    );
+    assert!(steady < 1e-3, "{steady}");
+    assert!(to_3 > 5.0 * steady + 1e-3, "{to_3} against {steady}");
+    assert!(
+        to_2 > 1.5 * to_3,
+        "deeper locks in more: {to_2} against {to_3}"
+    );
+    assert!(
+        (thrice - to_3).abs() < 0.25 * to_3,
+        "the same easing again adds little: {thrice} against {to_3}"
+    );
 }

@@ -286,9 +286,10 @@ pub fn write_outputs(
         let check = report::dominance(family, &rows, report::DOMINANCE_MAX_DROP_RATE);
         let reference = stats::clairvoyant_constant(family, &opts.sweeps, &all);
         show(&format!(
-            "{}\n{}\n{}",
+            "{}\n{}\n{}{}",
             report::family_table(family, &rows),
             report::dominance_lines(&check),
+            report::turn_line(family, &rows),
             reference.as_ref().map_or(String::new(), |c| format!(
                 "{family}: a constant grip chosen per trial in advance (the least of the grid \
                  that holds it; a reference, not a controller) needs {:.3} x the oracle's force \

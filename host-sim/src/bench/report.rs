@@ -11,7 +11,8 @@ use std::path::Path;
 /// The text table of one family's rows: controller, knob and value (`*` marks the
 /// default), drops of all trials, drops of the holdable ones, drops of those at the
 /// hand's limit ([`AT_LIMIT_FRACTION`](super::stats::AT_LIMIT_FRACTION); `-` without a
-/// `constant` sweep), the drop rate with its Wilson 95 % interval [%], force over oracle
+/// `constant` sweep), the holdable drops that were turns rather than slides
+/// ([`lost_by_turning`](super::stats::lost_by_turning)), the drop rate with its Wilson 95 % interval [%], force over oracle
 /// [-], mean force [N], mean slip [mm].
 pub fn family_table(family: &str, rows: &[Row]) -> String {
     let mut s = String::new();
@@ -28,19 +29,20 @@ pub fn family_table(family: &str, rows: &[Row]) -> String {
     );
     let _ = writeln!(
         s,
-        "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>19}  {:>9}  {:>10}  {:>9}",
+        "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>8}  {:>19}  {:>9}  {:>10}  {:>9}",
         "controller",
         "knob",
         "value",
         "drops",
         "drops (hold.)",
         "(at limit)",
+        "(turns)",
         "drop rate [95% CI]",
         "N/oracle",
         "mean N [N]",
         "slip [mm]"
     );
-    let _ = writeln!(s, "{}", "-".repeat(126));
+    let _ = writeln!(s, "{}", "-".repeat(136));
     for r in rows {
         let value = format!("{}{}", r.knob_value, if r.default { "*" } else { "" });
         let at_limit = match (r.drops_at_limit, r.at_limit) {
@@ -49,13 +51,14 @@ pub fn family_table(family: &str, rows: &[Row]) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>5.1} % [{:>4.1}, {:>4.1}]  {:>9.3}  {:>10.3}  {:>9.3}",
+            "{:<15} {:<8} {:>7}  {:>7}  {:>12}  {:>11}  {:>8}  {:>5.1} % [{:>4.1}, {:>4.1}]  {:>9.3}  {:>10.3}  {:>9.3}",
             r.controller,
             r.knob,
             value,
             format!("{}/{}", r.drops, r.trials),
             format!("{}/{}", r.drops_holdable, r.holdable),
             at_limit,
+            r.drops_turned,
             100.0 * r.drop_rate,
             100.0 * r.drop_rate_ci95[0],
             100.0 * r.drop_rate_ci95[1],
@@ -65,6 +68,34 @@ pub fn family_table(family: &str, rows: &[Row]) -> String {
         );
     }
     s
+}
+
+/// One line per family: of each controller's holdable drops over every setting of its
+/// knob, how many were turns ([`lost_by_turning`](super::stats::lost_by_turning)), in
+/// the order of `rows`; empty when no controller dropped a holdable trial.
+pub fn turn_line(family: &str, rows: &[Row]) -> String {
+    let mut tally: Vec<(&str, usize, usize)> = Vec::new();
+    for r in rows {
+        match tally.iter_mut().find(|t| t.0 == r.controller) {
+            Some(t) => {
+                t.1 += r.drops_turned;
+                t.2 += r.drops_holdable;
+            }
+            None => tally.push((&r.controller, r.drops_turned, r.drops_holdable)),
+        }
+    }
+    if tally.iter().all(|t| t.2 == 0) {
+        return String::new();
+    }
+    let cells: Vec<String> = tally
+        .iter()
+        .map(|(c, turned, dropped)| format!("{c} {turned}/{dropped}"))
+        .collect();
+    format!(
+        "{family}: holdable drops that were turns past {} rad, not slides, over every setting: {}\n",
+        crate::sim::run::DROP_ROTATION_RAD,
+        cells.join(", ")
+    )
 }
 
 /// What `bench.json` holds.

@@ -3,8 +3,9 @@
 //! or of every seed pooled.
 
 use super::families::N_MAX_N;
-use super::sweep::{settings, Sweep, TrialResult};
+use super::sweep::{settings, RunRow, Sweep, TrialResult};
 use crate::sim::controllers::ControllerKind;
+use crate::sim::run::DROP_DISTANCE_M;
 use serde::Serialize;
 
 /// One row of `bench.json`: one family, controller and knob value over all trials.
@@ -31,6 +32,9 @@ pub struct Row {
     pub drops: usize,
     /// Holdable trials dropped.
     pub drops_holdable: usize,
+    /// Holdable trials dropped by a turn ([`lost_by_turning`]): the object turned past
+    /// [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD) before it slid [`DROP_DISTANCE_M`].
+    pub drops_turned: usize,
     /// Holdable trials at the hand's limit ([`at_limit`]); `None` when the run has no
     /// `constant` sweep to tell.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -105,6 +109,14 @@ pub fn at_limit(sweeps: &[Sweep], r: &TrialResult, n_max_n: f64) -> Option<bool>
     (!grid.is_empty()).then(|| at_limit_on(&grid, r, n_max_n))
 }
 
+/// Whether a dropped run was lost by turning: the drop ([`is_drop`](crate::sim::run::is_drop))
+/// is a slide past [`DROP_DISTANCE_M`] or a turn past [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD), and slip
+/// stops accumulating at the drop, so a drop with no more than [`DROP_DISTANCE_M`] of
+/// slide is a turn. `false` for a run that held.
+pub fn lost_by_turning(run: &RunRow) -> bool {
+    run.dropped && run.slip_distance_m <= DROP_DISTANCE_M
+}
+
 /// The rows of one family from its trials' results (of one seed, `seed`, or of every seed
 /// pooled, `None`), in the order of `sweeps`.
 pub fn rows(
@@ -123,7 +135,7 @@ pub fn rows(
         .collect();
     let at_limit_trials = (!grid.is_empty()).then(|| limit.iter().filter(|x| **x).count());
     for (col, sw, v) in settings(sweeps) {
-        let (mut drops, mut drops_h, mut drops_l) = (0, 0, 0);
+        let (mut drops, mut drops_h, mut drops_t, mut drops_l) = (0, 0, 0, 0);
         let (mut ratio, mut force, mut peak, mut slip, mut events) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for (r, limit) in results.iter().zip(&limit) {
             let run = &r.runs[col];
@@ -131,6 +143,7 @@ pub fn rows(
                 drops += 1;
                 if r.holdable {
                     drops_h += 1;
+                    drops_t += usize::from(lost_by_turning(run));
                 }
                 if *limit {
                     drops_l += 1;
@@ -154,6 +167,7 @@ pub fn rows(
             holdable,
             drops,
             drops_holdable: drops_h,
+            drops_turned: drops_t,
             at_limit: at_limit_trials,
             drops_at_limit: at_limit_trials.map(|_| drops_l),
             drop_rate: mean(drops as f64),

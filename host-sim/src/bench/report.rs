@@ -12,8 +12,8 @@ use std::path::Path;
 /// default), drops of all trials, drops of the holdable ones, drops of those at the
 /// hand's limit ([`AT_LIMIT_FRACTION`](super::stats::AT_LIMIT_FRACTION); `-` without a
 /// `constant` sweep), the holdable drops that were turns rather than slides
-/// ([`lost_by_turning`](super::stats::lost_by_turning)), the drop rate with its Wilson 95 % interval [%], force over oracle
-/// [-], mean force [N], mean slip [mm].
+/// ([`lost_by_turning`](super::stats::lost_by_turning)), the drop rate with its Wilson
+/// 95 % interval [%], force over oracle [-], mean force [N], mean slip [mm].
 pub fn family_table(family: &str, rows: &[Row]) -> String {
     let mut s = String::new();
     let (trials, holdable) = rows.first().map_or((0, 0), |r| (r.trials, r.holdable));

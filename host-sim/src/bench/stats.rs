@@ -33,7 +33,8 @@ pub struct Row {
     /// Holdable trials dropped.
     pub drops_holdable: usize,
     /// Holdable trials dropped by a turn ([`lost_by_turning`]): the object turned past
-    /// [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD) before it slid [`DROP_DISTANCE_M`].
+    /// [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD) before it slid
+    /// [`DROP_DISTANCE_M`].
     pub drops_turned: usize,
     /// Holdable trials at the hand's limit ([`at_limit`]); `None` when the run has no
     /// `constant` sweep to tell.
@@ -109,10 +110,11 @@ pub fn at_limit(sweeps: &[Sweep], r: &TrialResult, n_max_n: f64) -> Option<bool>
     (!grid.is_empty()).then(|| at_limit_on(&grid, r, n_max_n))
 }
 
-/// Whether a dropped run was lost by turning: the drop ([`is_drop`](crate::sim::run::is_drop))
-/// is a slide past [`DROP_DISTANCE_M`] or a turn past [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD), and slip
-/// stops accumulating at the drop, so a drop with no more than [`DROP_DISTANCE_M`] of
-/// slide is a turn. `false` for a run that held.
+/// Whether a dropped run was lost by turning: the drop
+/// ([`is_drop`](crate::sim::run::is_drop)) is a slide past [`DROP_DISTANCE_M`] or a turn
+/// past [`DROP_ROTATION_RAD`](crate::sim::run::DROP_ROTATION_RAD), and slip stops
+/// accumulating at the drop, so a drop with no more than [`DROP_DISTANCE_M`] of slide is
+/// a turn. `false` for a run that held.
 pub fn lost_by_turning(run: &RunRow) -> bool {
     run.dropped && run.slip_distance_m <= DROP_DISTANCE_M
 }

@@ -351,3 +351,43 @@ fn actuator_fields_are_validated() {
     }
     assert!(Controller::<f32>::new(lagging(0.0, f64::INFINITY)).is_ok());
 }
+
+/// The lead follows the load, not the margin: when a steady hold ends (the margin steps
+/// from `STEADY_SAFETY_FACTOR` back to 1 on a small rise of the load), the command runs
+/// ahead of the requirement by no more than the load's own rise calls for, `(Ṅ_req −
+/// Ṅ₀)·τ` at the plain margin, where a lead on the requirement's step would add most of
+/// the step again.
+#[test]
+fn a_step_of_the_margin_is_not_led() {
+    let lag = 0.03;
+    let cfg = lagging(lag, f64::INFINITY);
+    let mut c = Controller::<f64>::new(cfg).unwrap();
+    // 4 N held for 1 s (steady from 0.3 s), then 0.1 N more over 20 ms, then held: the
+    // hold ends at the rise and is steady again 0.3 s after it.
+    let load = |t: f64| 4.0 + 0.1 * ((t - 1.0) / 0.02).clamp(0.0, 1.0);
+    let (mut lead_max, mut rate_max, mut prev) = (0.0f64, 0.0f64, None);
+    let mut margin_before = 1.0;
+    for k in 1..1300u64 {
+        let t = k as f64 * 1e-3;
+        let o = c.tick(&frame(k * 1000, load(t), 0.0, 5.0, SlipSignal::None));
+        let plain = c.required_force(load(t), 0.0, cfg.safety).unwrap().force_n;
+        if let Some(p) = prev {
+            rate_max = rate_max.max((plain - p) / 1e-3);
+        }
+        prev = Some(plain);
+        if k == 999 {
+            margin_before = o.margin;
+        }
+        if k >= 1000 {
+            lead_max = lead_max.max(o.command_n - o.required_n);
+        }
+    }
+    let bound = (rate_max - RATE_DEADBAND_N_PER_S) * lag;
+    eprintln!(
+        "margin {margin_before} before the rise; lead at most {lead_max:.4} N, the load's rise \
+         calls for {bound:.4} N"
+    );
+    assert_eq!(margin_before, STEADY_SAFETY_FACTOR);
+    assert!(lead_max > 0.5 * bound, "the rise itself is led: {lead_max}");
+    assert!(lead_max <= 1.02 * bound, "{lead_max} > {bound}");
+}

@@ -18,14 +18,23 @@
 //! approaches `r`). The target is never below the present `N_req`: a falling load gets
 //! no lead (the lag then holds the force up, on the safe side).
 //!
-//! `Ṅ_req` comes from two first-order low-pass stages with the time constant
-//! [`FILTER_TAU_S`]: one on `N_req`, one on its difference quotient; rates below the dead
-//! band `Ṅ₀` = [`RATE_DEADBAND_N_PER_S`] are taken as noise. Sensor noise of 0.02 N on each
-//! force component (the simulator's `sensor_noise` default) then moves the command by
-//! under a hundredth of a newton on average (`tests/robust_grip.rs` measures it), while a
-//! lift or a shake (tens to hundreds of N/s) gets its full lead. The filters delay the
-//! estimate by about `2·FILTER_TAU_S`; loads that change much faster than that are
-//! covered by the safety factor and, with a slip sensor, by the slip response.
+//! `Ṅ_req` is the load's rise, not the margin's: two first-order low-pass stages with the
+//! time constant [`FILTER_TAU_S`], one on `N_slip = N_req(1)` (which no safety factor or
+//! margin enters), one on its difference quotient, give `Ṅ_slip`, and `Ṅ_req =
+//! Ṅ_slip·N_req/N_slip` carries it to the requirement at the present margin. That is exact
+//! for a pure force or a pure twist, where `N_req` and `N_slip` are the same power of the
+//! load's scale (1 and `1/(1+γ)`); between them the power drifts with the scale, and the
+//! lead can miss by a factor of at most their ratio, `1 + γ`. A step of the margin (a
+//! steady hold's end, a cycle's start, a slip response) is then no rise and gets no lead;
+//! led as one, the end of a steady hold through a 30 ms lag asked 2.1 N over an 8.2 N
+//! requirement where the load's own rise called for 0.24 N (`tests/robust_grip.rs`,
+//! `a_step_of_the_margin_is_not_led`). Rates below the dead band `Ṅ₀` =
+//! [`RATE_DEADBAND_N_PER_S`] are taken as noise. Sensor noise of 0.02 N on each force
+//! component (the simulator's `sensor_noise` default) then moves the command by under a
+//! hundredth of a newton on average (`tests/robust_grip.rs` measures it), while a lift or a
+//! shake (tens to hundreds of N/s) gets its full lead. The filters delay the estimate by
+//! about `2·FILTER_TAU_S`; loads that change much faster than that are covered by the
+//! safety factor and, with a slip sensor, by the slip response.
 //!
 //! `τ` and `r` are what the controller has identified of its actuator
 //! ([`actuator`](super::actuator)), starting from `actuator_lag_s` and
@@ -69,7 +78,7 @@
 //! finger's eight held-out bench seeds, table mode at a safety factor of 1.5 dropped 3
 //! `shake` trials of 240 with it and 12 without, and the bench's choice of the default
 //! moved from 1.75 to 1.5 at the same drops on its aims (sixteen held-out seeds later
-//! moved it to 1.6), while lift-hold, twist and faults pay the plain factor (or the
+//! moved it to 1.6, and to 1.65 once the lead took its rate from the load), while lift-hold, twist and faults pay the plain factor (or the
 //! steady one, below) (docs/bench.md, "The default").
 //!
 //! **Steady loads.** The margin a rising load needs is spent while it rises: on the
@@ -87,14 +96,15 @@
 //! product of the safety factor and every factor on it is floored at one. Nor does it trim a margin that a slip signal raised, or a belief `μ̂` that a slip
 //! lowered: the steady factor waits until the slip response has relaxed back to its
 //! configured state ([`slip`](super::slip)). ([`Controller`](super::Controller) applies
-//! both.) What it gives up: a steady hold covers a smaller error of `μ`. At `s = 1.6` it
-//! asks `1.36·N_slip`, which holds a true `μ` down to 74 % of the configured one, not
-//! 62.5 %; a slip sensor, or a larger `s`, covers the rest.
+//! both.) What it gives up: a steady hold covers a smaller error of `μ`. At `s = 1.65` it
+//! asks `1.40·N_slip`, which holds a true `μ` down to 71 % of the configured one, not
+//! 61 %; a slip sensor, or a larger `s`, covers the rest.
 //!
-//! Cost per tick: about fifteen multiplications and one division; the cycle detector
-//! adds a low-pass and two comparisons (a multiplication and an addition on a new
-//! extreme), the steady detector a multiplication, an addition, two subtractions and two
-//! comparisons.
+//! Cost per tick: about fifteen multiplications and two divisions (the horizon's and
+//! `N_req/N_slip`); the cycle and steady detectors share the low-pass of `N_slip` with
+//! the rate, and add two comparisons (a multiplication and an addition on a new extreme)
+//! and a multiplication, an addition, two subtractions and two comparisons. The
+//! firmware's worst ellipse tick is 1 994 instructions of its 2 000 (docs/firmware-costs.md).
 
 use crate::real::Real;
 
@@ -154,9 +164,9 @@ pub(crate) struct Lead<T> {
     steady_ticks: u64,
     // State.
     started: bool,
-    level: T,
-    /// `N_slip`, low-passed as the requirement is.
+    /// `N_slip`, low-passed (the first of the two rate filters).
     load_level: T,
+    /// `N_slip`'s rate, low-passed (the second) [N/s].
     rate: T,
     /// Good ticks so far (the deadlines' clock).
     clock: u64,
@@ -199,7 +209,6 @@ impl<T: Real> Lead<T> {
             steady_rise: T::of(STEADY_RISE_N / mu),
             steady_ticks: steady as u64,
             started: false,
-            level: T::zero(),
             load_level: T::zero(),
             rate: T::zero(),
             clock: 0,
@@ -262,7 +271,6 @@ impl<T: Real> Lead<T> {
     pub(crate) fn target(&mut self, required_n: T, n_slip_n: T, lag_s: T, inv_slew: T) -> T {
         if !self.started {
             self.started = true;
-            self.level = required_n;
             self.load_level = n_slip_n;
             self.steady_level = n_slip_n;
             self.steady_from = self.clock + self.steady_ticks;
@@ -270,20 +278,29 @@ impl<T: Real> Lead<T> {
         }
         self.clock += 1;
         let clock = self.clock;
-        let level = self.level;
-        let step = required_n - level;
-        let next = level + step * self.alpha;
+        // The rate is the load's: `N_slip`'s, which no safety factor or margin enters, so
+        // a step of the margin (a steady hold's end, a cycle's start, a slip response) is
+        // not a rise of the load and gets no lead. Their present ratio carries it to the
+        // requirement (see the module's docs).
+        let step = n_slip_n - self.load_level;
         let raw = step * self.alpha_per_s;
         let before = self.rate;
         self.rate = self.rate + (raw - self.rate) * self.alpha;
-        self.level = next;
+        let load = self.load_level + step * self.alpha;
+        self.load_level = load;
+        let scale = if n_slip_n > T::zero() {
+            required_n / n_slip_n
+        } else {
+            T::zero()
+        };
+        let rate = self.rate * scale;
         // A local peak of the requirement: its rate turned from rising to falling. The
         // peak is the highest requirement of the rise that ended there.
         if required_n > self.rise_max {
             self.rise_max = required_n;
         }
-        let was_rising = before > self.deadband;
-        let is_rising = self.rate > self.deadband;
+        let was_rising = before * scale > self.deadband;
+        let is_rising = rate > self.deadband;
         if was_rising && !is_rising {
             self.peak_until = clock + self.window_ticks;
             self.peak = self.rise_max;
@@ -295,8 +312,6 @@ impl<T: Real> Lead<T> {
         // neither the safety factor nor a margin, so the factor this raises cannot feed
         // back into it. (Deadlines on one tick clock, and the turn's level kept with its
         // extreme: the Cortex-M4F's tick budget.)
-        let load = self.load_level + (n_slip_n - self.load_level) * self.alpha;
-        self.load_level = load;
         // The load is steady once it has stayed near where it settled for the hold: a
         // fall past a swing's depth, or a rise past `STEADY_RISE_N`, settles it anew.
         if load - self.steady_level > self.steady_rise
@@ -334,13 +349,13 @@ impl<T: Real> Lead<T> {
         if !(lag_s > T::zero()) {
             return required_n;
         }
-        let rising = self.rate - self.deadband;
+        let rising = rate - self.deadband;
         if !(rising > T::zero()) {
             return required_n;
         }
         let horizon = if inv_slew > T::zero() {
             let max_horizon = lag_s * T::of(HORIZON_MAX_LAGS);
-            let climb = T::one() - self.rate * inv_slew;
+            let climb = T::one() - rate * inv_slew;
             let h = lag_s / climb;
             if climb > T::zero() && h < max_horizon {
                 h

@@ -56,30 +56,31 @@
 //!
 //! **Cyclic loads.** A load that cycles (a shake, a tool that vibrates) needs more margin
 //! than a steady one of the same peak: each swing slides the outer ring of the patch a
-//! little and sticks it again, and on a soft finger those slides ratchet the object's
-//! turn and shift from cycle to cycle, where a steady load settles. So while the load
-//! cycles the controller multiplies its safety factor by [`CYCLIC_SAFETY_FACTOR`], and
-//! otherwise asks only the configured one: a lift, a hold, a single twist get the plain
-//! margin. The load is watched through its `N_slip` (the force at which it would just
-//! slip: no safety factor, no margin, so the factor cannot feed back into it), low-passed
-//! as the requirement is for the rate. It turns at a top when it falls [`CYCLE_DEPTH`] of
-//! its top plus the `N_slip` of [`CYCLE_DEPTH_FLOOR_N`] of load below it, and at a bottom
-//! when it rises as much above its bottom; the load cycles from a bottom turn that
-//! follows a top turn within [`SWING_WINDOW_S`] and another bottom turn within twice
-//! that, until twice [`SWING_WINDOW_S`] after it (longer than a period, so a 2 Hz shake
-//! is held through). One lift (up, down as it decelerates, back to the weight) has one
-//! bottom turn and does not count on its own; a shake of 2 Hz or faster counts from its
-//! second trough. A fall of a swing's depth in the half second before a lift (the grip
-//! settling while the object still rests on its support) gives the lift's start a bottom
-//! turn of its own, and then the lift counts and its hold gets the factor (bench seed
-//! 5002, `lift-hold` trial 3); asking a cycle's fall to be at least half its rise keeps
-//! such a lift out, but on the tuning seeds it changed table mode's `lift-hold` force by
-//! 0.3 % and added a drop at 1.3, so it was left out (docs/bench.md, "The default"). The factor shows in [`TickOutput::margin`](super::TickOutput). On the brush
-//! finger's eight held-out bench seeds, table mode at a safety factor of 1.5 dropped 3
-//! `shake` trials of 240 with it and 12 without, and the bench's choice of the default
-//! moved from 1.75 to 1.5 at the same drops on its aims (sixteen held-out seeds later
-//! moved it to 1.6, and to 1.65 once the lead took its rate from the load), while lift-hold, twist and faults pay the plain factor (or the
-//! steady one, below) (docs/bench.md, "The default").
+//! little and sticks it again, and on a soft finger those slides ratchet the object's turn
+//! and shift from cycle to cycle, where a steady load settles. So while the load cycles the
+//! controller multiplies its safety factor by [`CYCLIC_SAFETY_FACTOR`], and otherwise asks
+//! only the configured one: a lift, a hold, a single twist get the plain margin. The load
+//! is watched through its `N_slip` (the force at which it would just slip: no safety
+//! factor, no margin, so the factor cannot feed back into it), low-passed as the
+//! requirement is for the rate. It turns at a top when it falls [`CYCLE_DEPTH`] of its top
+//! plus the `N_slip` of [`CYCLE_DEPTH_FLOOR_N`] of load below it, and at a bottom when it
+//! rises as much above its bottom; the load cycles from a bottom turn that follows a top
+//! turn within [`SWING_WINDOW_S`] and another bottom turn within twice that, until twice
+//! [`SWING_WINDOW_S`] after it (longer than a period, so a 2 Hz shake is held through). One
+//! lift (up, down as it decelerates, back to the weight) has one bottom turn and does not
+//! count on its own; a shake of 2 Hz or faster counts from its second trough. A fall of a
+//! swing's depth in the half second before a lift (the grip settling while the object still
+//! rests on its support) gives the lift's start a bottom turn of its own, and then the lift
+//! counts and its hold gets the factor (bench seed 5002, `lift-hold` trial 3); asking a
+//! cycle's fall to be at least half its rise keeps such a lift out, but on the tuning seeds
+//! it changed table mode's `lift-hold` force by 0.3 % and added a drop at 1.3, so it was
+//! left out (docs/bench.md, "The default"). The factor shows in
+//! [`TickOutput::margin`](super::TickOutput). On the brush finger's eight held-out bench
+//! seeds, table mode at a safety factor of 1.5 dropped 3 `shake` trials of 240 with it and
+//! 12 without, and the bench's choice of the default moved from 1.75 to 1.5 at the same
+//! drops on its aims (sixteen held-out seeds later moved it to 1.6, and to 1.65 once the
+//! lead took its rate from the load), while lift-hold, twist and faults pay the plain
+//! factor (or the steady one, below) (docs/bench.md, "The default").
 //!
 //! **Steady loads.** The margin a rising load needs is spent while it rises: on the
 //! brush finger the lift's drops are turns of the object during the lift, and on a

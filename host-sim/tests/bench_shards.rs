@@ -1,6 +1,6 @@
 //! `bench --shard I/N` and `bench merge`: the merged shards write exactly the files of the
-//! whole run, byte for byte, and a merge refuses a missing unit, a duplicate and shards
-//! of different runs, naming the problem.
+//! whole run, byte for byte, and so do the merged runs of some of its seeds each; a merge
+//! refuses a missing unit, a duplicate and shards of different runs, naming the problem.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -132,6 +132,93 @@ fn merged_shards_equal_the_whole_run_byte_for_byte() {
     assert!(!o.status.success() && e.contains("different runs"), "{e}");
     assert!(e.contains("options hard"), "{e}");
     for d in [whole, parts, merged, other] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+/// `bench` with the run's options but `seeds` for its seeds.
+fn bench_seeds(seeds: &str, extra: &[&str], out: &Path) {
+    let mut args: Vec<&str> = RUN.to_vec();
+    args[5] = seeds;
+    let o = Command::new(exe())
+        .arg("bench")
+        .args(args)
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn runs_of_some_seeds_each_merge_into_the_run_over_all_of_them() {
+    let whole = tmp("pool-whole");
+    bench(&[], &whole);
+    // Seed 5 as one run in two shards, seed 6 as another run in one.
+    let (five, six) = (tmp("pool-5"), tmp("pool-6"));
+    bench_seeds("5", &["--shard", "0/2"], &five);
+    bench_seeds("5", &["--shard", "1/2"], &five);
+    bench_seeds("6", &["--shard", "0/1"], &six);
+    let shards = [
+        five.join("shard-0-of-2.json"),
+        five.join("shard-1-of-2.json"),
+        six.join("shard-0-of-1.json"),
+    ];
+    let merged = tmp("pool-merged");
+    let o = merge(&merged, &shards);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (a, b) = (files(&whole), files(&merged));
+    assert_eq!(
+        a.iter().map(|f| &f.0).collect::<Vec<_>>(),
+        b.iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
+    for ((name, x), (_, y)) in a.iter().zip(&b) {
+        assert!(
+            x == y,
+            "{name} differs between the run over seeds 5,6 and the merged runs"
+        );
+    }
+    // The seeds come in the order the files first name them: 6 then 5 is another run.
+    let swapped = tmp("pool-swapped");
+    let o = merge(
+        &swapped,
+        &[shards[2].clone(), shards[0].clone(), shards[1].clone()],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(swapped.join("bench.json")).unwrap()).unwrap();
+    assert_eq!(json["key"]["seeds"], serde_json::json!([6, 5]));
+    // A run missing one of its shards leaves its seed's units in no shard; a seed in two
+    // runs puts its units in more than one; runs that differ in more than their seeds
+    // are refused.
+    let o = merge(&tmp("pool-m1"), &shards[1..]);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success() && e.contains("is in no shard"), "{e}");
+    let both = tmp("pool-both");
+    bench(&["--shard", "0/1"], &both);
+    let o = merge(
+        &tmp("pool-m2"),
+        &[shards[2].clone(), both.join("shard-0-of-1.json")],
+    );
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        !o.status.success() && e.contains("more than one shard"),
+        "{e}"
+    );
+    let hard = tmp("pool-hard");
+    bench_seeds("6", &["--shard", "0/1", "--hard"], &hard);
+    let o = merge(
+        &tmp("pool-m3"),
+        &[
+            shards[0].clone(),
+            shards[1].clone(),
+            hard.join("shard-0-of-1.json"),
+        ],
+    );
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success() && e.contains("options hard"), "{e}");
+    assert!(!e.contains("seeds"), "{e}");
+    for d in [whole, five, six, merged, swapped, both, hard] {
         let _ = std::fs::remove_dir_all(d);
     }
 }

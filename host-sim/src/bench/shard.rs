@@ -9,6 +9,14 @@
 //! every unit exactly once, and writes the files a single run writes, from the same
 //! results: bit for bit the same (`host-sim/tests/bench_shards.rs`). Floats round-trip
 //! exactly through the JSON (serde_json's `float_roundtrip`).
+//!
+//! It also pools runs that differ in their seeds alone: a trial's result depends only on
+//! its family, seed and index (each draws from a stream of its own), so the shards of a
+//! run over seeds `A` and of one over seeds `B` hold every unit of the run over `A` then
+//! `B` (each seed once, in the order the files first name it), and the merge writes that
+//! run's files, bit for bit. A held-out set can so grow by seeds without rerunning the
+//! ones it has, as long as every shard comes from the same build: the key records the
+//! options, not the code (bench.md, "Outputs, shards and merge").
 
 use super::families::Ranges;
 use super::sweep::{Sweep, TrialResult, SWEEPS};
@@ -278,9 +286,11 @@ fn differing(a: &Key, b: &Key) -> String {
     format!("options {}", names.join(", "))
 }
 
-/// Reads the shard files `paths` of one run and returns its options (writing to `out`)
-/// and every unit's result in the run's order; or what is wrong with them: a file that
-/// cannot be read, keys that differ, a unit missing, or one given twice.
+/// Reads the shard files `paths` of one run, or of runs that differ in their seeds alone,
+/// and returns the options of the run over every seed they name (each once, in the order
+/// the files first name it; writing to `out`) and every unit's result in that run's order;
+/// or what is wrong with them: a file that cannot be read, keys that differ in more than
+/// their seeds, a unit missing, or one given twice.
 pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
     let mut key: Option<(Key, &Path)> = None;
     let mut got: BTreeMap<(String, u64, usize), TrialResult> = BTreeMap::new();
@@ -288,16 +298,24 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let file: ShardFile =
             serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-        match &key {
-            Some((k, first)) if *k != file.key => {
-                return Err(format!(
-                    "{} and {} are shards of different runs (their {} differ)",
-                    first.display(),
-                    path.display(),
-                    differing(k, &file.key)
-                ))
+        match &mut key {
+            Some((k, first)) => {
+                let mut seedless = file.key.clone();
+                seedless.seeds.clone_from(&k.seeds);
+                if *k != seedless {
+                    return Err(format!(
+                        "{} and {} are shards of different runs (their {} differ)",
+                        first.display(),
+                        path.display(),
+                        differing(k, &seedless)
+                    ));
+                }
+                for seed in &file.key.seeds {
+                    if !k.seeds.contains(seed) {
+                        k.seeds.push(*seed);
+                    }
+                }
             }
-            Some(_) => {}
             None => key = Some((file.key.clone(), path)),
         }
         for u in file.units {

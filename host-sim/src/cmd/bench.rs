@@ -79,6 +79,8 @@ pub struct BenchArgs {
 pub enum MergeCommand {
     /// Merges the shard files of one run (`bench --shard I/N`) into the files the whole
     /// run writes, bit for bit: bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png.
+    /// Runs that differ in their seeds alone are pooled into the run over all their seeds
+    /// (in the order the files first name them); every shard must come from one build.
     Merge(MergeArgs),
 }
 
@@ -88,7 +90,8 @@ pub struct MergeArgs {
     /// Output directory.
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
-    /// The shard files (shard-I-of-N.json), every shard of the run once.
+    /// The shard files (shard-I-of-N.json), every shard of the run (or of each run
+    /// pooled) once.
     #[arg(required = true)]
     pub shards: Vec<PathBuf>,
 }

@@ -106,7 +106,7 @@ def required_force(
     shape: str = "rect",
     half_length_m: float = 0.01,
     k: float = 2.0,
-    safety: float = 1.65,
+    safety: float = 1.75,
     mode: str = "table",
     skew: Any = None,
     n_min_n: float = 0.2,

@@ -42,7 +42,7 @@ fn build_err(py: Python<'_>, e: BuildError) -> PyErr {
     shape = "rect",
     half_length_m = 0.01,
     k = 2.0,
-    safety = 1.65,
+    safety = 1.75,
     mode = "table",
     skew = None,
     n_min_n = 0.2,

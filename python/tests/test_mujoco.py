@@ -1,12 +1,14 @@
-"""A short MuJoCo grasp: softgrip holds the box, with a mean force within 1.25 x the
-least constant grip that holds it (found on a 0.5 N grid knowing the scene), where the
-Coulomb rule drops it."""
+"""A short MuJoCo grasp: softgrip holds the box where the Coulomb rule drops it. At its
+default it asks no more than its own safety factor over the least constant grip that holds
+(found on a 0.5 N grid knowing the scene), and at a safety factor of 1.5 no more than
+1.25 x that grip."""
 
 import importlib.util
 import pathlib
 import sys
 
 import pytest
+import softgrip
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -33,9 +35,16 @@ def test_softgrip_holds_near_the_least_constant_grip(grasp):
     least = grasp.least_holding_constant(constants, mu_t)
     assert least is not None and 8.0 < least <= 12.0, least
     # A constant grip chosen knowing the scene is a reference no controller can match
-    # (softgrip does not know the shake is coming): the bench's aim in lift-hold,
-    # 1.25 x, bounds how far above it softgrip may hold.
-    assert soft.mean_force_n <= 1.25 * least, (soft, least)
+    # (softgrip does not know the shake is coming). The default's margin over it is at most
+    # its own safety factor, the cyclic factor it adds through the shake and the twist
+    # included (docs/python.md).
+    safety = softgrip.default_config()["safety"]
+    assert soft.mean_force_n <= safety * least, (soft, least, safety)
+    # At a fixed safety factor of 1.5 (the default is the brush bench's choice and moves
+    # with it), the bench's aim in lift-hold, 1.25 x, bounds how far above it softgrip holds.
+    at_1_5 = grasp.run(grasp.Softgrip(safety=1.5), mu_t)
+    assert at_1_5.held, at_1_5
+    assert at_1_5.mean_force_n <= 1.25 * least, (at_1_5, least)
 
 
 def test_coulomb_baseline_drops_under_torsion(grasp):

@@ -78,9 +78,9 @@
 //! [`TickOutput::margin`](super::TickOutput). On the brush finger's eight held-out bench
 //! seeds, table mode at a safety factor of 1.5 dropped 3 `shake` trials of 240 with it and
 //! 12 without, and the bench's choice of the default moved from 1.75 to 1.5 at the same
-//! drops on its aims (sixteen held-out seeds later moved it to 1.6, and to 1.65 once the
-//! lead took its rate from the load), while lift-hold, twist and faults pay the plain
-//! factor (or the steady one, below) (docs/bench.md, "The default").
+//! drops on its aims (sixteen held-out seeds later moved it to 1.6, to 1.65 once the lead
+//! took its rate from the load, and thirty-two to 1.75), while lift-hold, twist and
+//! faults pay the plain factor (or the steady one, below) (docs/bench.md, "The default").
 //!
 //! **Steady loads.** The margin a rising load needs is spent while it rises: on the
 //! brush finger the lift's drops are turns of the object during the lift, and on a
@@ -97,15 +97,15 @@
 //! product of the safety factor and every factor on it is floored at one. Nor does it trim a margin that a slip signal raised, or a belief `μ̂` that a slip
 //! lowered: the steady factor waits until the slip response has relaxed back to its
 //! configured state ([`slip`](super::slip)). ([`Controller`](super::Controller) applies
-//! both.) What it gives up: a steady hold covers a smaller error of `μ`. At `s = 1.65` it
-//! asks `1.40·N_slip`, which holds a true `μ` down to 71 % of the configured one, not
-//! 61 %; a slip sensor, or a larger `s`, covers the rest.
+//! both.) What it gives up: a steady hold covers a smaller error of `μ`. At `s = 1.75` it
+//! asks `1.49·N_slip`, which holds a true `μ` down to 67 % of the configured one, not
+//! 57 %; a slip sensor, or a larger `s`, covers the rest.
 //!
 //! Cost per tick: about fifteen multiplications and two divisions (the horizon's and
 //! `N_req/N_slip`); the cycle and steady detectors share the low-pass of `N_slip` with
 //! the rate, and add two comparisons (a multiplication and an addition on a new extreme)
 //! and a multiplication, an addition, two subtractions and two comparisons. The
-//! firmware's worst ellipse tick is 1 994 instructions of its 2 000 (docs/firmware-costs.md).
+//! firmware's worst ellipse tick is 1 995 instructions of its 2 000 (docs/firmware-costs.md).
 
 use crate::real::Real;
 

@@ -290,7 +290,8 @@ fn differing(a: &Key, b: &Key) -> String {
 /// and returns the options of the run over every seed they name (each once, in the order
 /// the files first name it; writing to `out`) and every unit's result in that run's order;
 /// or what is wrong with them: a file that cannot be read, keys that differ in more than
-/// their seeds, a unit missing, or one given twice.
+/// their seeds and their controllers' defaults (labels, which the merge takes from this
+/// build), a unit missing, or one given twice.
 pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
     let mut key: Option<(Key, &Path)> = None;
     let mut got: BTreeMap<(String, u64, usize), TrialResult> = BTreeMap::new();
@@ -300,8 +301,13 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
             serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         match &mut key {
             Some((k, first)) => {
+                // A default is a label (no trial reads it, and the merge marks this
+                // build's), so shards written before a default moved still pool.
                 let mut seedless = file.key.clone();
                 seedless.seeds.clone_from(&k.seeds);
+                for (s, t) in seedless.sweeps.iter_mut().zip(&k.sweeps) {
+                    s.default = t.default;
+                }
                 if *k != seedless {
                     return Err(format!(
                         "{} and {} are shards of different runs (their {} differ)",

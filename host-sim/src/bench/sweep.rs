@@ -35,7 +35,7 @@ pub const CONSTANT_DEFAULT_N: f64 = 20.0;
 /// `coulomb`'s default safety factor (held-out choice, as [`CONSTANT_DEFAULT_N`]).
 pub const COULOMB_DEFAULT_SAFETY: f64 = 3.0;
 /// `box`'s default safety factor (held-out choice, as [`CONSTANT_DEFAULT_N`]).
-pub const BOX_DEFAULT_SAFETY: f64 = 2.5;
+pub const BOX_DEFAULT_SAFETY: f64 = 3.0;
 /// `fixed-torsion`'s default safety factor (held-out choice, as
 /// [`CONSTANT_DEFAULT_N`]).
 pub const FIXED_TORSION_DEFAULT_SAFETY: f64 = 2.5;

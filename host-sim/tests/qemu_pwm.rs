@@ -186,11 +186,11 @@ fn the_board_build_writes_each_command_into_tim3s_compare_register() {
     let configured = stats(&mut link).command_n;
     assert_eq!(qmp.read_u32(CCR1), duty(configured), "after Configure");
 
-    // A varying load for 120 ticks, then a light one for 500, so that the command falls
-    // (at 20 N/s) well below the fault force before the silence.
+    // A varying load for 120 ticks, then a light one for 800, so that the command falls
+    // (at 20 N/s, from as high as `N_max`) well below the fault force before the silence.
     let mut duties = std::collections::BTreeSet::new();
     let mut last = configured;
-    for i in 0..620u32 {
+    for i in 0..920u32 {
         let p = i as f32 * 0.09;
         let varying = i < 120;
         let f = SensorFrame {

@@ -1,6 +1,7 @@
-//! `bench --shard I/N` and `bench merge`: the merged shards write exactly the files of the
-//! whole run, byte for byte, and so do the merged runs of some of its seeds each; a merge
-//! refuses a missing unit, a duplicate and shards of different runs, naming the problem.
+//! `bench --shard I/N`, `bench merge` and `bench select`: the merged shards write exactly
+//! the files of the whole run, byte for byte, and so do the merged runs of some of its
+//! seeds each, and of some of its controllers each; a merge refuses a missing unit, a
+//! duplicate and shards of different runs, naming the problem.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -38,8 +39,14 @@ fn bench(extra: &[&str], out: &Path) -> std::process::Output {
 
 /// `bench` with the run's options but `seeds` for its seeds.
 fn bench_seeds(seeds: &str, extra: &[&str], out: &Path) -> std::process::Output {
+    bench_with(seeds, RUN[7], extra, out)
+}
+
+/// `bench` with the run's options but `seeds` and `controllers`.
+fn bench_with(seeds: &str, controllers: &str, extra: &[&str], out: &Path) -> std::process::Output {
     let mut args: Vec<&str> = RUN.to_vec();
     args[5] = seeds;
+    args[7] = controllers;
     let o = Command::new(exe())
         .arg("bench")
         .args(args)
@@ -212,6 +219,108 @@ fn runs_of_some_seeds_each_merge_into_the_run_over_all_of_them() {
     assert!(!o.status.success() && e.contains("options hard"), "{e}");
     assert!(!e.contains("seeds"), "{e}");
     for d in [whole, five, six, merged, swapped, both, hard] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+fn select(out: &Path, controllers: &str, shards: &[PathBuf]) -> std::process::Output {
+    Command::new(exe())
+        .args(["bench", "select", "--controller", controllers, "--out"])
+        .arg(out)
+        .args(shards)
+        .output()
+        .unwrap()
+}
+
+fn assert_same_files(whole: &Path, merged: &Path) {
+    let (a, b) = (files(whole), files(merged));
+    assert_eq!(
+        a.iter().map(|f| &f.0).collect::<Vec<_>>(),
+        b.iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
+    for ((name, x), (_, y)) in a.iter().zip(&b) {
+        assert!(
+            x == y,
+            "{name} differs between the whole run and the merged runs"
+        );
+    }
+}
+
+#[test]
+fn runs_of_some_controllers_each_merge_into_the_run_over_all_of_them() {
+    let whole = tmp("ctl-whole");
+    bench(&[], &whole);
+    // An earlier run of both controllers, of which only fixed-torsion is kept, and a
+    // rerun of softgrip-table alone, as two runs of one seed each.
+    let (old, kept) = (tmp("ctl-old"), tmp("ctl-kept"));
+    bench(&["--shard", "0/2"], &old);
+    bench(&["--shard", "1/2"], &old);
+    let old_shards = [old.join("shard-0-of-2.json"), old.join("shard-1-of-2.json")];
+    let o = select(&kept, "fixed-torsion", &old_shards);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let kept_shards = [
+        kept.join("shard-0-of-2.json"),
+        kept.join("shard-1-of-2.json"),
+    ];
+    let (five, six) = (tmp("ctl-5"), tmp("ctl-6"));
+    bench_with("5", "softgrip-table", &["--shard", "0/1"], &five);
+    bench_with("6", "softgrip-table", &["--shard", "0/1"], &six);
+    let reruns = [
+        five.join("shard-0-of-1.json"),
+        six.join("shard-0-of-1.json"),
+    ];
+    let all: Vec<PathBuf> = kept_shards.iter().chain(&reruns).cloned().collect();
+    let merged = tmp("ctl-merged");
+    let o = merge(&merged, &all);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_same_files(&whole, &merged);
+
+    // softgrip-table from both the earlier run and the rerun is given twice; without
+    // seed 6's rerun, its units lack softgrip-table's runs.
+    let twice: Vec<PathBuf> = old_shards.iter().chain(&reruns).cloned().collect();
+    let o = merge(&tmp("ctl-m1"), &twice);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        !o.status.success() && e.contains("more than one shard") && e.contains("softgrip-table"),
+        "{e}"
+    );
+    let o = merge(&tmp("ctl-m2"), &all[..3]);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        !o.status.success() && e.contains("no shard with runs of softgrip-table"),
+        "{e}"
+    );
+    // A trial whose own facts differ between files (as another build's would) is refused.
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&reruns[1]).unwrap()).unwrap();
+    let oracle = &mut json["units"][0]["result"]["oracle_mean_n"];
+    *oracle = serde_json::json!(oracle.as_f64().unwrap() * 1.001);
+    let other = tmp("ctl-other");
+    std::fs::create_dir_all(&other).unwrap();
+    let tampered = other.join("shard-0-of-1.json");
+    std::fs::write(&tampered, serde_json::to_string(&json).unwrap()).unwrap();
+    let o = merge(
+        &tmp("ctl-m3"),
+        &[
+            kept_shards[0].clone(),
+            kept_shards[1].clone(),
+            reruns[0].clone(),
+            tampered,
+        ],
+    );
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success() && e.contains("different builds"), "{e}");
+    // select refuses a controller a file lacks, and a file it would overwrite.
+    let o = select(&tmp("ctl-s1"), "box", &old_shards);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        !o.status.success() && e.contains("has no runs of box"),
+        "{e}"
+    );
+    let o = select(&old, "fixed-torsion", &old_shards);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success() && e.contains("overwrite"), "{e}");
+    for d in [whole, old, kept, five, six, merged, other] {
         let _ = std::fs::remove_dir_all(d);
     }
 }

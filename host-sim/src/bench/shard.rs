@@ -17,9 +17,16 @@
 //! run's files, bit for bit. A held-out set can so grow by seeds without rerunning the
 //! ones it has, as long as every shard comes from the same build: the key records the
 //! options, not the code (bench.md, "Outputs, shards and merge").
+//!
+//! Runs that differ in their controllers pool the same way: a controller's runs of a
+//! trial depend only on the trial, not on which other controllers ran beside it. So after
+//! a change to one controller, only that controller is rerun, and [`select`] takes the
+//! others out of the shards a run already has (`bench select`). Each controller of each
+//! unit must then come from exactly one file, and the files must agree on each trial's
+//! own facts (its μ, sensor, holdability and oracle force), bit for bit.
 
 use super::families::Ranges;
-use super::sweep::{Sweep, TrialResult, SWEEPS};
+use super::sweep::{RunRow, Sweep, TrialResult, SWEEPS};
 use super::trial_finger::FingerSource;
 use super::{BenchError, BenchLink, BenchOptions};
 use serde::{Deserialize, Serialize};
@@ -286,35 +293,146 @@ fn differing(a: &Key, b: &Key) -> String {
     format!("options {}", names.join(", "))
 }
 
-/// Reads the shard files `paths` of one run, or of runs that differ in their seeds alone,
-/// and returns the options of the run over every seed they name (each once, in the order
-/// the files first name it; writing to `out`) and every unit's result in that run's order;
-/// or what is wrong with them: a file that cannot be read, keys that differ in more than
-/// their seeds and their controllers' defaults (labels, which the merge takes from this
-/// build), a unit missing, or one given twice.
+/// The columns of each sweep of `key` in a trial's runs: `(controller, start, end)`.
+fn columns(key: &Key) -> Vec<(&str, usize, usize)> {
+    let mut start = 0;
+    key.sweeps
+        .iter()
+        .map(|s| {
+            let end = start + s.values.len();
+            let c = (s.controller.as_str(), start, end);
+            start = end;
+            c
+        })
+        .collect()
+}
+
+fn read(path: &Path) -> Result<ShardFile, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let file: ShardFile =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let width: usize = file.key.sweeps.iter().map(|s| s.values.len()).sum();
+    match file.units.iter().find(|u| u.result.runs.len() != width) {
+        Some(u) => Err(format!(
+            "{}: {} trial {} of seed {} has {} runs where its sweeps have {width}",
+            path.display(),
+            u.family,
+            u.index,
+            u.seed,
+            u.result.runs.len()
+        )),
+        None => Ok(file),
+    }
+}
+
+/// Writes the shard files `paths` again into the directory `out`, each under its own name,
+/// keeping only the runs of `controllers` (in the order the file has them); returns the
+/// paths written. Refuses a file that lacks one of them, and a file that would overwrite
+/// itself.
+pub fn select(paths: &[PathBuf], controllers: &[&str], out: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let mut written = Vec::new();
+    for path in paths {
+        let mut file = read(path)?;
+        let cols = columns(&file.key);
+        if let Some(c) = controllers
+            .iter()
+            .find(|c| !cols.iter().any(|(name, ..)| name == *c))
+        {
+            return Err(format!("{}: has no runs of {c}", path.display()));
+        }
+        let keep: Vec<(usize, usize)> = cols
+            .iter()
+            .filter(|(name, ..)| controllers.contains(name))
+            .map(|&(_, a, b)| (a, b))
+            .collect();
+        file.key
+            .sweeps
+            .retain(|s| controllers.contains(&s.controller.as_str()));
+        for u in &mut file.units {
+            let runs = std::mem::take(&mut u.result.runs);
+            u.result.runs = keep
+                .iter()
+                .flat_map(|&(a, b)| runs[a..b].to_vec())
+                .collect();
+        }
+        let name = path
+            .file_name()
+            .ok_or_else(|| format!("{}: not a file", path.display()))?;
+        let to = out.join(name);
+        if to.canonicalize().ok().is_some() && to.canonicalize().ok() == path.canonicalize().ok() {
+            return Err(format!(
+                "{}: --out would overwrite it; choose another directory",
+                path.display()
+            ));
+        }
+        let text = serde_json::to_string(&file).map_err(|e| e.to_string())?;
+        std::fs::write(&to, text + "\n").map_err(|e| format!("{}: {e}", to.display()))?;
+        written.push(to);
+    }
+    Ok(written)
+}
+
+/// A trial's own facts, which every file that holds it must give alike.
+fn facts(r: &TrialResult) -> [u64; 5] {
+    [
+        r.true_mu.to_bits(),
+        r.mu_ratio.to_bits(),
+        u64::from(r.sensor),
+        u64::from(r.holdable),
+        r.oracle_mean_n.to_bits(),
+    ]
+}
+
+/// One unit as the files give it: a file's trial (its facts) and each controller's runs.
+struct Gathered {
+    first: TrialResult,
+    from: PathBuf,
+    runs: BTreeMap<String, Vec<RunRow>>,
+}
+
+/// Reads the shard files `paths` of one run, or of runs that differ in their seeds or
+/// their controllers alone, and returns the options of the run over every seed and every
+/// controller they name (each once, in the order the files first name it; writing to
+/// `out`) and every unit's result in that run's order; or what is wrong with them: a file
+/// that cannot be read, keys that differ in more than their seeds, their controllers and
+/// the controllers' defaults (labels, which the merge takes from this build), a
+/// controller with different grids, a trial whose facts differ between files, a unit or a
+/// controller's runs of it missing, or given twice.
 pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
     let mut key: Option<(Key, &Path)> = None;
-    let mut got: BTreeMap<(String, u64, usize), TrialResult> = BTreeMap::new();
+    let mut got: BTreeMap<(String, u64, usize), Gathered> = BTreeMap::new();
     for path in paths {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let file: ShardFile =
-            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let file = read(path)?;
         match &mut key {
             Some((k, first)) => {
                 // A default is a label (no trial reads it, and the merge marks this
                 // build's), so shards written before a default moved still pool.
-                let mut seedless = file.key.clone();
-                seedless.seeds.clone_from(&k.seeds);
-                for (s, t) in seedless.sweeps.iter_mut().zip(&k.sweeps) {
-                    s.default = t.default;
-                }
-                if *k != seedless {
+                let mut rest = file.key.clone();
+                rest.seeds.clone_from(&k.seeds);
+                rest.sweeps.clone_from(&k.sweeps);
+                if *k != rest {
                     return Err(format!(
                         "{} and {} are shards of different runs (their {} differ)",
                         first.display(),
                         path.display(),
-                        differing(k, &seedless)
+                        differing(k, &rest)
                     ));
+                }
+                for s in &file.key.sweeps {
+                    match k.sweeps.iter().find(|t| t.controller == s.controller) {
+                        Some(t) if t.values != s.values => {
+                            return Err(format!(
+                                "{} and {} are shards of different runs (their grids of {} \
+                                 differ)",
+                                first.display(),
+                                path.display(),
+                                s.controller
+                            ))
+                        }
+                        Some(_) => {}
+                        None => k.sweeps.push(s.clone()),
+                    }
                 }
                 for seed in &file.key.seeds {
                     if !k.seeds.contains(seed) {
@@ -324,16 +442,42 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
             }
             None => key = Some((file.key.clone(), path)),
         }
+        let cols = columns(&file.key);
         for u in file.units {
             let id = (u.family.clone(), u.seed, u.index);
-            if got.insert(id, u.result).is_some() {
+            let g = got.entry(id).or_insert_with(|| Gathered {
+                first: TrialResult {
+                    runs: Vec::new(),
+                    ..u.result.clone()
+                },
+                from: path.clone(),
+                runs: BTreeMap::new(),
+            });
+            if facts(&g.first) != facts(&u.result) {
                 return Err(format!(
-                    "{}: {} trial {} of seed {} is in more than one shard",
-                    path.display(),
+                    "{} trial {} of seed {} differs between {} and {} (its μ, sensor, \
+                     holdability or oracle force): shards of different builds",
                     u.family,
                     u.index,
-                    u.seed
+                    u.seed,
+                    g.from.display(),
+                    path.display()
                 ));
+            }
+            for &(name, a, b) in &cols {
+                if g.runs
+                    .insert(name.to_string(), u.result.runs[a..b].to_vec())
+                    .is_some()
+                {
+                    return Err(format!(
+                        "{}: {} trial {} of seed {} is in more than one shard (its runs of \
+                         {name})",
+                        path.display(),
+                        u.family,
+                        u.index,
+                        u.seed
+                    ));
+                }
             }
         }
     }
@@ -342,7 +486,7 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
     let mut results = Vec::new();
     for u in units(&opts) {
         let id = (u.family.to_string(), u.seed, u.index);
-        let r = got.remove(&id).ok_or_else(|| {
+        let mut g = got.remove(&id).ok_or_else(|| {
             format!(
                 "{} trial {} of seed {} is in no shard (unit {} of {})",
                 u.family,
@@ -352,6 +496,16 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
                 opts.trials * opts.seeds.len() * opts.families.len()
             )
         })?;
+        let mut r = g.first;
+        for s in &key.sweeps {
+            let runs = g.runs.remove(&s.controller).ok_or_else(|| {
+                format!(
+                    "{} trial {} of seed {} is in no shard with runs of {} (unit {})",
+                    u.family, u.index, u.seed, s.controller, u.number
+                )
+            })?;
+            r.runs.extend(runs);
+        }
         results.push(r);
     }
     if let Some(((f, s, i), _)) = got.into_iter().next() {

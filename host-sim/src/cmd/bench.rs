@@ -17,9 +17,10 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct BenchArgs {
-    /// `bench merge`: the files of a run's shards into the run's outputs.
+    /// `bench merge`: the files of a run's shards into the run's outputs; `bench
+    /// select`: some controllers' runs out of shard files.
     #[command(subcommand)]
-    pub merge: Option<MergeCommand>,
+    pub command: Option<ShardCommand>,
     /// Families (lift-hold, shake, twist, mu-mismatch, faults), comma-separated, or all.
     #[arg(long, value_delimiter = ',', default_value = "all")]
     pub family: Vec<String>,
@@ -74,14 +75,34 @@ pub struct BenchArgs {
     pub finger: Option<PathBuf>,
 }
 
-/// `bench`'s subcommand.
+/// `bench`'s subcommands, on the shard files of `--shard`.
 #[derive(Debug, clap::Subcommand)]
-pub enum MergeCommand {
+pub enum ShardCommand {
     /// Merges the shard files of one run (`bench --shard I/N`) into the files the whole
     /// run writes, bit for bit: bench.json, trials-FAMILY.csv, pareto-FAMILY.svg/.png.
-    /// Runs that differ in their seeds alone are pooled into the run over all their seeds
-    /// (in the order the files first name them); every shard must come from one build.
+    /// Runs that differ in their seeds or their controllers alone are pooled into the run
+    /// over all their seeds and controllers (in the order the files first name them);
+    /// each controller's runs of a trial must come from one file, and every file from
+    /// one build.
     Merge(MergeArgs),
+    /// Writes shard files again, into --out under their own names, with only the runs
+    /// of the given controllers: to pool the controllers a change left alone with a
+    /// rerun of the one it changed (`bench merge`).
+    Select(SelectArgs),
+}
+
+/// Arguments of `host-sim bench select`.
+#[derive(Debug, Args)]
+pub struct SelectArgs {
+    /// The controllers to keep, comma-separated (each must be in every file).
+    #[arg(long, value_delimiter = ',', required = true)]
+    pub controller: Vec<String>,
+    /// Output directory (not the files' own).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// The shard files (shard-I-of-N.json).
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
 }
 
 /// Arguments of `host-sim bench merge`.
@@ -231,8 +252,10 @@ fn failed(e: BenchError) -> CliError {
 
 /// `host-sim bench` (and `bench merge`).
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
-    if let Some(MergeCommand::Merge(m)) = &args.merge {
-        return merge(m);
+    match &args.command {
+        Some(ShardCommand::Merge(m)) => return merge(m),
+        Some(ShardCommand::Select(a)) => return select(a),
+        None => {}
     }
     let opts = options(args)?;
     let start = std::time::Instant::now();
@@ -242,6 +265,26 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         args.out.display(),
         start.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// `host-sim bench select`.
+fn select(a: &SelectArgs) -> Result<(), CliError> {
+    let names: Vec<&str> = a.controller.iter().map(String::as_str).collect();
+    if let Some(n) = names
+        .iter()
+        .find(|n| !SWEEPS.iter().any(|s| s.controller.name() == **n))
+    {
+        let known: Vec<&str> = SWEEPS.iter().map(|s| s.controller.name()).collect();
+        return Err(CliError::Usage(format!(
+            "--controller: bench has no sweep of \"{n}\", expected one of {}",
+            known.join(", ")
+        )));
+    }
+    let written = bench::shard::select(&a.shards, &names, &a.out).map_err(CliError::Failed)?;
+    for p in written {
+        println!("wrote {}", p.display());
+    }
     Ok(())
 }
 

@@ -360,11 +360,13 @@ pub fn select(paths: &[PathBuf], controllers: &[&str], out: &Path) -> Result<Vec
             .file_name()
             .ok_or_else(|| format!("{}: not a file", path.display()))?;
         let to = out.join(name);
-        if to.canonicalize().ok().is_some() && to.canonicalize().ok() == path.canonicalize().ok() {
-            return Err(format!(
-                "{}: --out would overwrite it; choose another directory",
-                path.display()
-            ));
+        if let (Ok(a), Ok(b)) = (to.canonicalize(), path.canonicalize()) {
+            if a == b {
+                return Err(format!(
+                    "{}: --out would overwrite it; choose another directory",
+                    path.display()
+                ));
+            }
         }
         let text = serde_json::to_string(&file).map_err(|e| e.to_string())?;
         std::fs::write(&to, text + "\n").map_err(|e| format!("{}: {e}", to.display()))?;

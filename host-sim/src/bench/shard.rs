@@ -393,117 +393,101 @@ struct Gathered {
     runs: BTreeMap<String, Vec<RunRow>>,
 }
 
-/// Reads the shard files `paths` of one run, or of runs that differ in their seeds or
-/// their controllers alone, and returns the options of the run over every seed and every
-/// controller they name (each once, in the order the files first name it; writing to
-/// `out`) and every unit's result in that run's order; or what is wrong with them: a file
-/// that cannot be read, keys that differ in more than their seeds, their controllers and
-/// the controllers' defaults (labels, which the merge takes from this build), a
-/// controller with different grids, a trial whose facts differ between files, a unit or a
-/// controller's runs of it missing, or given twice.
-pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
-    let mut key: Option<(Key, &Path)> = None;
-    let mut got: BTreeMap<(String, u64, usize), Gathered> = BTreeMap::new();
-    for path in paths {
-        let file = read(path)?;
-        match &mut key {
-            Some((k, first)) => {
-                // A default is a label (no trial reads it, and the merge marks this
-                // build's), so shards written before a default moved still pool.
-                let mut rest = file.key.clone();
-                rest.seeds.clone_from(&k.seeds);
-                rest.sweeps.clone_from(&k.sweeps);
-                if *k != rest {
-                    return Err(format!(
-                        "{} and {} are shards of different runs (their {} differ)",
-                        first.display(),
-                        path.display(),
-                        differing(k, &rest)
-                    ));
-                }
-                for s in &file.key.sweeps {
-                    match k.sweeps.iter().find(|t| t.controller == s.controller) {
-                        Some(t) if t.values != s.values => {
-                            return Err(format!(
-                                "{} and {} are shards of different runs (their grids of {} \
-                                 differ)",
-                                first.display(),
-                                path.display(),
-                                s.controller
-                            ))
-                        }
-                        Some(_) => {}
-                        None => k.sweeps.push(s.clone()),
-                    }
-                }
-                for seed in &file.key.seeds {
-                    if !k.seeds.contains(seed) {
-                        k.seeds.push(*seed);
-                    }
-                }
+/// The units gathered so far, by family, seed and trial index.
+type Units = BTreeMap<(String, u64, usize), Gathered>;
+
+/// Pools the key `other` of the file `path` into `k`, the key of the files before it (the
+/// first of them `first`): its new seeds and controllers join `k`'s; anything else that
+/// differs, or a controller's grid, is refused.
+fn pool_key(k: &mut Key, other: &Key, first: &Path, path: &Path) -> Result<(), String> {
+    // A default is a label (no trial reads it, and the merge marks this build's), so
+    // shards written before a default moved still pool.
+    let mut rest = other.clone();
+    rest.seeds.clone_from(&k.seeds);
+    rest.sweeps.clone_from(&k.sweeps);
+    let different = |what: String| {
+        format!(
+            "{} and {} are shards of different runs (their {what} differ)",
+            first.display(),
+            path.display()
+        )
+    };
+    if *k != rest {
+        return Err(different(differing(k, &rest)));
+    }
+    for s in &other.sweeps {
+        match k.sweeps.iter().find(|t| t.controller == s.controller) {
+            Some(t) if t.values != s.values => {
+                return Err(different(format!("grids of {}", s.controller)))
             }
-            None => key = Some((file.key.clone(), path)),
+            Some(_) => {}
+            None => k.sweeps.push(s.clone()),
         }
-        let cols = columns(&file.key);
-        for u in file.units {
-            let id = (u.family.clone(), u.seed, u.index);
-            let g = got.entry(id).or_insert_with(|| Gathered {
+    }
+    for seed in &other.seeds {
+        if !k.seeds.contains(seed) {
+            k.seeds.push(*seed);
+        }
+    }
+    Ok(())
+}
+
+/// Adds the units of `file` (read from `path`) to `got`, each controller's runs once;
+/// refuses a trial whose facts differ from another file's, and a controller's runs of a
+/// unit given twice.
+fn gather(got: &mut Units, file: ShardFile, path: &Path) -> Result<(), String> {
+    let cols = columns(&file.key);
+    for u in file.units {
+        let at = format!("{} trial {} of seed {}", u.family, u.index, u.seed);
+        let g = got
+            .entry((u.family.clone(), u.seed, u.index))
+            .or_insert_with(|| Gathered {
                 first: TrialResult {
                     runs: Vec::new(),
                     ..u.result.clone()
                 },
-                from: path.clone(),
+                from: path.to_path_buf(),
                 runs: BTreeMap::new(),
             });
-            if facts(&g.first) != facts(&u.result) {
+        if facts(&g.first) != facts(&u.result) {
+            return Err(format!(
+                "{at} differs between {} and {} (its μ, sensor, holdability or oracle \
+                 force): shards of different builds",
+                g.from.display(),
+                path.display()
+            ));
+        }
+        for &(name, a, b) in &cols {
+            let runs = u.result.runs[a..b].to_vec();
+            if g.runs.insert(name.to_string(), runs).is_some() {
                 return Err(format!(
-                    "{} trial {} of seed {} differs between {} and {} (its μ, sensor, \
-                     holdability or oracle force): shards of different builds",
-                    u.family,
-                    u.index,
-                    u.seed,
-                    g.from.display(),
+                    "{}: {at} is in more than one shard (its runs of {name})",
                     path.display()
                 ));
             }
-            for &(name, a, b) in &cols {
-                if g.runs
-                    .insert(name.to_string(), u.result.runs[a..b].to_vec())
-                    .is_some()
-                {
-                    return Err(format!(
-                        "{}: {} trial {} of seed {} is in more than one shard (its runs of \
-                         {name})",
-                        path.display(),
-                        u.family,
-                        u.index,
-                        u.seed
-                    ));
-                }
-            }
         }
     }
-    let (key, _) = key.ok_or("no shard files given")?;
-    let opts = options_of(&key, out)?;
+    Ok(())
+}
+
+/// Every unit's result in the order of the run `opts` (its controllers those of `key`),
+/// from `got`; or the first unit, or controller's runs of one, that no file gave, or a
+/// unit that is not the run's.
+fn assemble(opts: &BenchOptions, key: &Key, mut got: Units) -> Result<Vec<TrialResult>, String> {
+    let total = opts.trials * opts.seeds.len() * opts.families.len();
     let mut results = Vec::new();
-    for u in units(&opts) {
+    for u in units(opts) {
+        let at = format!("{} trial {} of seed {}", u.family, u.index, u.seed);
         let id = (u.family.to_string(), u.seed, u.index);
-        let mut g = got.remove(&id).ok_or_else(|| {
-            format!(
-                "{} trial {} of seed {} is in no shard (unit {} of {})",
-                u.family,
-                u.index,
-                u.seed,
-                u.number,
-                opts.trials * opts.seeds.len() * opts.families.len()
-            )
-        })?;
+        let mut g = got
+            .remove(&id)
+            .ok_or_else(|| format!("{at} is in no shard (unit {} of {total})", u.number))?;
         let mut r = g.first;
         for s in &key.sweeps {
             let runs = g.runs.remove(&s.controller).ok_or_else(|| {
                 format!(
-                    "{} trial {} of seed {} is in no shard with runs of {} (unit {})",
-                    u.family, u.index, u.seed, s.controller, u.number
+                    "{at} is in no shard with runs of {} (unit {})",
+                    s.controller, u.number
                 )
             })?;
             r.runs.extend(runs);
@@ -515,5 +499,30 @@ pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialRe
             "{f} trial {i} of seed {s} is not a unit of this run"
         ));
     }
+    Ok(results)
+}
+
+/// Reads the shard files `paths` of one run, or of runs that differ in their seeds or
+/// their controllers alone, and returns the options of the run over every seed and every
+/// controller they name (each once, in the order the files first name it; writing to
+/// `out`) and every unit's result in that run's order; or what is wrong with them: a file
+/// that cannot be read, keys that differ in more than their seeds, their controllers and
+/// the controllers' defaults (labels, which the merge takes from this build), a
+/// controller with different grids, a trial whose facts differ between files, a unit or a
+/// controller's runs of it missing, or given twice.
+pub fn merge(paths: &[PathBuf], out: &Path) -> Result<(BenchOptions, Vec<TrialResult>), String> {
+    let mut key: Option<(Key, &Path)> = None;
+    let mut got = Units::new();
+    for path in paths {
+        let file = read(path)?;
+        match &mut key {
+            Some((k, first)) => pool_key(k, &file.key, first, path)?,
+            None => key = Some((file.key.clone(), path)),
+        }
+        gather(&mut got, file, path)?;
+    }
+    let (key, _) = key.ok_or("no shard files given")?;
+    let opts = options_of(&key, out)?;
+    let results = assemble(&opts, &key, got)?;
     Ok((opts, results))
 }

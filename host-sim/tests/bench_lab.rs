@@ -34,6 +34,8 @@ fn the_lab_recovers_a_limit_surface_finger_within_its_noise() {
             b.cone_mu
         );
         assert!((b.gamma - 0.4).abs() < 0.05, "{shape:?} gamma {}", b.gamma);
+        // Its `c` fits the torsion test, so the half-length stays the geometric one.
+        assert_eq!(b.half_length_m, 0.01, "{shape:?}");
         // softgrip's contact law is the one friction sees: its torsion limit
         // mu*N*a(N)*pitch(k, l/a) is the surface's, within the noise.
         let pitch = |a: f64| {
@@ -84,6 +86,7 @@ fn no_controller_reads_the_plant() {
             // surface change of mu-mismatch).
             assert_eq!(c.number("mu"), Some(b.mu));
             assert_eq!(c.number("c_m_per_n_gamma"), Some(b.c));
+            assert_eq!(c.number("half_length_m"), Some(b.half_length_m));
             assert_eq!(c.baseline_mu, Some(b.cone_mu));
             assert_eq!(c.baseline_torsion_arm_m, Some(b.torsion_arm_m));
             assert_ne!(b.mu, t.scene.finger.mu, "{family} {i}");

@@ -133,9 +133,9 @@ fn lift(start: f64, end: f64, accel: f64) -> String {
 fn controller(b: &Beliefs, extra: &str) -> String {
     format!(
         "[controller]\nmu = {:?}\nk = {:?}\nc_m_per_n_gamma = {:?}\ngamma = {:?}\n\
-         n_min_n = {N_MIN_N:?}\nn_max_n = {N_MAX_N:?}\nbaseline_mu = {:?}\n\
-         baseline_torsion_arm_m = {:?}\n{extra}",
-        b.mu, b.k, b.c, b.gamma, b.cone_mu, b.torsion_arm_m
+         half_length_m = {:?}\nn_min_n = {N_MIN_N:?}\nn_max_n = {N_MAX_N:?}\n\
+         baseline_mu = {:?}\nbaseline_torsion_arm_m = {:?}\n{extra}",
+        b.mu, b.k, b.c, b.gamma, b.half_length_m, b.cone_mu, b.torsion_arm_m
     )
 }
 

@@ -8,12 +8,14 @@
 //! - **softgrip** gets `k` and `γ` from `softgrip_calibrate` (the same fit as
 //!   `host-sim calibrate`, on a surface grid shared by every trial of a shape), `μ` from
 //!   the slip test (as the cone), and the scale `c` of its contact law refitted to the
-//!   torsion test at that `μ`, `k` and `γ` ([`friction_contact_c`]): the contact size
+//!   torsion test at that `μ`, `k` and `γ` ([`friction_contact`]): the contact size
 //!   that friction sees. On a finger softgrip models this is the indentation's `c`; on
 //!   the brush finger, whose pressure is more peaked at the centre than any `k ≥ 1`
 //!   allows, the joint fit would otherwise lower `μ` to fit the torsion onsets and ask
 //!   every tangential load for more force than it needs, while still overrating the
-//!   finger's torsion;
+//!   finger's torsion. On a long hemicylinder no `c` fits (its torsion is set by its
+//!   length): there the half-length friction sees is refitted instead, at the
+//!   indentation's `c`, and softgrip is told it in place of the geometric one;
 //! - **the cone** (`coulomb`) gets `μ` from the slip test: the geometric mean of the
 //!   onsets' `f_t/N`;
 //! - **`fixed-torsion` and `box`** get that `μ` and their fixed patch from the torsion
@@ -36,8 +38,10 @@ use std::sync::OnceLock;
 pub const LAB_FORCES_N: [f64; 6] = [0.5, 1.0, 2.0, 4.0, 8.0, 16.0];
 /// Relative noise (standard deviation) on every recorded value.
 pub const LAB_NOISE: f64 = 0.02;
-/// Aspect range `l/a` and nodes of the shared surface grids.
-const GRID_ASPECTS: (f64, f64, usize) = (0.15, 60.0, 40);
+/// Aspect range `l/a` and nodes of the shared surface grids: every finger the bench
+/// draws, at every lab force, lies inside it (`lab_aspects_lie_inside_the_shared_grid`);
+/// one that does not gets a grid of its own ([`calibrate`]).
+pub const GRID_ASPECTS: (f64, f64, usize) = (0.15, 400.0, 53);
 
 /// What the controllers believe about one finger.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +54,9 @@ pub struct Beliefs {
     pub c: f64,
     /// softgrip's `γ`.
     pub gamma: f64,
+    /// softgrip's half-length [m]: the geometric one, or the one friction sees when the
+    /// torsion onsets call for it ([`friction_contact`]).
+    pub half_length_m: f64,
     /// The cone's, the box's and fixed-torsion's `μ` (slip test).
     pub cone_mu: f64,
     /// The box's and fixed-torsion's torsion arm [m] (torsion test).
@@ -107,15 +114,31 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
         shape,
         half_length_m,
     };
-    let cal = softgrip_calibrate::calibrate_on(
-        grid(shape)?,
-        &setup,
-        "indentation",
-        &lab.indentation,
-        "slip",
-        &lab.onsets,
-    )
-    .map_err(|e| format!("calibration: {e}"))?;
+    let fit = |g: &SurfaceGrid| {
+        softgrip_calibrate::calibrate_on(
+            g,
+            &setup,
+            "indentation",
+            &lab.indentation,
+            "slip",
+            &lab.onsets,
+        )
+        .map_err(|e| format!("calibration: {e}"))
+    };
+    let shared = grid(shape)?;
+    let mut cal = fit(shared)?;
+    // A grid clamps the aspect at its ends, which would bias the fit (and the torsion
+    // scale below) for a finger beyond them: such a finger gets the grid its data need,
+    // as `host-sim calibrate` builds it.
+    let own;
+    let g = if inside_shared_grid(shape, half_length_m, cal.c.value, cal.gamma.value) {
+        shared
+    } else {
+        own = softgrip_calibrate::grid_for(&setup, &lab.indentation, &lab.onsets)
+            .map_err(|e| format!("calibration: {e}"))?;
+        cal = fit(&own)?;
+        &own
+    };
     let of = |kind| lab.onsets.iter().filter(move |o| o.kind() == kind);
     let cone_mu =
         geometric_mean(of(OnsetKind::Force).map(|o| o.tangential_force_n / o.normal_force_n))
@@ -125,8 +148,8 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
     )
     .ok_or("calibration: no torsion onset")?;
     let torsion: Vec<&SlipOnset> = of(OnsetKind::Torsion).collect();
-    let c = friction_contact_c(
-        grid(shape)?,
+    let (c, friction_half_length_m) = friction_contact(
+        g,
         &setup,
         (cone_mu, cal.k.value, cal.gamma.value),
         cal.c.value,
@@ -137,52 +160,81 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
         k: cal.k.value,
         c,
         gamma: cal.gamma.value,
+        half_length_m: friction_half_length_m,
         cone_mu,
         torsion_arm_m,
     })
 }
 
-/// The scale `c` of the contact law `a = c·N^γ` [m/N^γ] at which the model's pure-torsion
-/// limit `μ·N·a(N)·pitch(k, l/a(N))` matches the torsion onsets on average in `ln m`
-/// (`(μ, k, γ)` fixed; 60 bisections in `ln c` within a factor e³ of `c0`, the
-/// indentation's); `c0` when there is no torsion onset.
-pub fn friction_contact_c(
+/// Whether the aspects `l/a(N)` of a finger of `shape` and half-length `half_length_m`
+/// [m] with the contact law `a = c·N^γ` lie inside the shared grid at every lab force
+/// (always for a disc, whose surface has no aspect).
+pub fn inside_shared_grid(shape: FingerShape, half_length_m: f64, c: f64, gamma: f64) -> bool {
+    if shape == FingerShape::Disc {
+        return true;
+    }
+    let (lo, hi, _) = GRID_ASPECTS;
+    LAB_FORCES_N.iter().all(|&n| {
+        let aspect = half_length_m / (c * n.powf(gamma));
+        (lo..=hi).contains(&aspect)
+    })
+}
+
+/// The contact law's scale `c` [m/N^γ] and the half-length [m] that friction sees: those
+/// at which the model's pure-torsion limit `μ·N·a(N)·pitch(k, l/a(N))` matches the torsion
+/// onsets on average in `ln m` (`(μ, k, γ)` fixed). First `c`, within a factor e³ of
+/// `c0` (the indentation's) at the geometric half-length `l0`; when no `c` there
+/// matches (a long hemicylinder's torsion is set by its length, whatever its width),
+/// the half-length, within a factor e of `l0`, at `c0`. 60 bisections in the log of
+/// either; `(c0, l0)` when neither brackets or there is no torsion onset.
+pub fn friction_contact(
     grid: &SurfaceGrid,
     setup: &Setup,
     (mu, k, gamma): (f64, f64, f64),
     c0: f64,
     torsion: &[&SlipOnset],
-) -> f64 {
+) -> (f64, f64) {
+    let l0 = setup.half_length_m;
     if torsion.is_empty() {
-        return c0;
+        return (c0, l0);
     }
     let kappa = 1.0 / k;
-    // Mean of ln(measured / modelled): decreasing in ln c.
-    let residual = |ln_c: f64| {
+    // Mean of ln(measured / modelled): decreasing in ln c and in ln l.
+    let residual = |c: f64, l: f64| {
         let sum: f64 = torsion
             .iter()
             .map(|o| {
                 let n = o.normal_force_n;
-                let a = ln_c.exp() * n.powf(gamma);
-                let pitch = grid.pitch(kappa, setup.half_length_m / a);
+                let a = c * n.powf(gamma);
+                let pitch = grid.pitch(kappa, l / a);
                 (o.torsional_moment_nm / (mu * n * a * pitch)).ln()
             })
             .sum();
         sum / torsion.len() as f64
     };
-    let (mut lo, mut hi) = (c0.ln() - 3.0, c0.ln() + 3.0);
-    // A bracket that does not change sign (or a NaN) keeps the indentation's scale.
-    let brackets = residual(lo) > 0.0 && residual(hi) < 0.0;
-    if !brackets {
-        return c0;
+    let root = |f: &dyn Fn(f64) -> f64, x0: f64, span: f64| -> Option<f64> {
+        let (mut lo, mut hi) = (x0.ln() - span, x0.ln() + span);
+        // A bracket that does not change sign (or a NaN) has no root.
+        if !(f(lo.exp()) > 0.0 && f(hi.exp()) < 0.0) {
+            return None;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if f(mid.exp()) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some((0.5 * (lo + hi)).exp())
+    };
+    if let Some(c) = root(&|c| residual(c, l0), c0, 3.0) {
+        return (c, l0);
     }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if residual(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
+    if setup.shape == FingerShape::Rect {
+        if let Some(l) = root(&|l| residual(c0, l), l0, 1.0) {
+            return (c0, l);
         }
     }
-    (0.5 * (lo + hi)).exp()
+    (c0, l0)
 }

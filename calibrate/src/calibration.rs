@@ -19,6 +19,7 @@
 
 use crate::contact_fit::{fit_contact, ContactFit};
 use crate::error::CalibError;
+use crate::friction_contact::FrictionContact;
 use crate::friction_fit::{
     fit_joint, FitPlan, JointFit, GAMMA, KAPPA, LN_C, LN_MU, PARAMS, SKEW_SQ,
 };
@@ -58,8 +59,9 @@ pub struct Estimate {
     /// The value (fitted, held, or moved by [`Calibration::conservative`]); `null` in
     /// JSON for `k = ∞` (uniform pressure).
     pub value: f64,
-    /// The 95 % interval; `None` when the parameter was not estimated at all; an
-    /// unbounded end is `∞` (`null` in JSON).
+    /// The 95 % interval; `None` when the parameter was not estimated at all, or was
+    /// refitted without one (the friction contact's `c`); an unbounded end is `∞`
+    /// (`null` in JSON).
     pub ci95: Option<[f64; 2]>,
     /// Whether the data identify it.
     pub identified: bool,
@@ -140,6 +142,10 @@ pub struct Calibration {
     pub fit: FitSummary,
     /// Whether [`Calibration::conservative`] moved the values.
     pub conservative: bool,
+    /// Set when [`Calibration::with_friction_contact`] moved `μ` and `c` or the
+    /// half-length to the contact friction sees: what it moved, and the joint fit's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_contact: Option<FrictionContact>,
     /// The least indentation force [N] and the lower 95 % bound of `ln a` there
     /// ([`Calibration::conservative`]'s contact law).
     #[serde(skip)]
@@ -464,6 +470,7 @@ fn estimates(
             df: fit.df,
         },
         conservative: false,
+        friction_contact: None,
         contact_floor: (n_min, ln_a_floor),
     }
 }
@@ -474,17 +481,19 @@ impl Calibration {
     /// bounds (each shrinks the limit surface), `γ` at its lower bound and `c` such that
     /// `a(N)` is at its lower 95 % bound at the least indentation force `N₁` (then `a(N)`
     /// is below the fitted law at every `N ≥ N₁`; a smaller contact has a smaller moment
-    /// arm `a·pitch(l/a)`). Held parameters stay where they are held.
+    /// arm `a·pitch(l/a)`). Held parameters stay where they are held. Of a calibration
+    /// with a friction contact, the joint fit's conservative values ([`Calibration::joint`]:
+    /// the refit has no interval to take an end of).
     pub fn conservative(&self) -> Self {
-        let mut out = self.clone();
-        out.mu.value = self.mu.lower();
-        out.k.value = self.k.lower();
-        out.gamma.value = self.gamma.lower();
+        let mut out = self.joint();
+        out.mu.value = out.mu.lower();
+        out.k.value = out.k.lower();
+        out.gamma.value = out.gamma.lower();
         let (n_min, ln_a_floor) = self.contact_floor;
         out.c.value = (ln_a_floor - out.gamma.value * n_min.ln()).exp();
         let sp = &mut out.skewed_pressure;
         if sp.delta_over_a.identified {
-            sp.delta_over_a.value = self.skewed_pressure.delta_over_a.lower();
+            sp.delta_over_a.value = sp.delta_over_a.lower();
             if self.shape == FingerShape::Rect.name() {
                 sp.locus_over_a.value = sp.delta_over_a.value / 2.0;
             }

@@ -6,6 +6,7 @@
 //! or why it was held, is a comment on its line.
 
 use crate::calibration::{Calibration, Estimate};
+use crate::friction_contact::Refit;
 use std::fmt::Write;
 
 /// A number as TOML writes it: shortest round-trip, `inf` for infinity.
@@ -50,10 +51,15 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
     let mut s = String::new();
     let kind = if cal.conservative {
         "conservative values (each at the capacity-lowering end of its 95 % interval)"
+    } else if cal.friction_contact.is_some() {
+        "fitted values, with the contact friction sees"
     } else {
         "fitted values"
     };
     let _ = writeln!(s, "# softgrip finger calibrated from {source}: {kind}.");
+    if let Some(fc) = &cal.friction_contact {
+        let _ = writeln!(s, "# {}.", fc.describe(sig4));
+    }
     let skew = cal.skew();
     if skew.is_some() {
         let _ = writeln!(s, "effects = [\"skewed_pressure\"]");
@@ -68,7 +74,15 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
     ] {
         let _ = writeln!(s, "{name} = {}{}", num(e.value), comment(e));
     }
-    let _ = writeln!(s, "half_length_m = {}  # given", num(cal.half_length_m));
+    let length_note = match &cal.friction_contact {
+        Some(fc) if fc.refit == Refit::HalfLength => "friction's, refitted (see above)",
+        _ => "given",
+    };
+    let _ = writeln!(
+        s,
+        "half_length_m = {}  # {length_note}",
+        num(cal.half_length_m)
+    );
     let sp = &cal.skewed_pressure;
     let rows = [
         ("delta_over_a", &sp.delta_over_a),
@@ -138,6 +152,9 @@ pub fn report_text(cal: &Calibration) -> String {
             ""
         }
     );
+    if let Some(fc) = &cal.friction_contact {
+        let _ = writeln!(s, "{}", fc.describe(sig4));
+    }
     s
 }
 

@@ -8,6 +8,8 @@
 //! - [`surface`]: the exact limit surface tabulated over `1/k`, `l/a` and the skew;
 //! - [`friction_fit`]: the joint fit of `c`, `γ`, `μ`, `k` and the skew to both files;
 //! - [`calibration`]: identifiability, 95 % intervals, conservative values: [`calibrate`];
+//! - [`friction_contact`]: optionally after it, `μ` from the slip test and the contact
+//!   scale (or a long hemicylinder's half-length) refitted to the torsion onsets;
 //! - [`interval`] and [`lsq`]: t quantiles, Wald intervals, the least-squares solver;
 //! - [`finger_toml`]: the finger TOML and the text report;
 //! - [`error`]: the errors, [`CalibError`].
@@ -25,6 +27,7 @@ pub mod calibration;
 pub mod contact_fit;
 pub mod error;
 pub mod finger_toml;
+pub mod friction_contact;
 pub mod friction_fit;
 pub mod interval;
 pub mod lab_csv;

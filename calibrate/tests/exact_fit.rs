@@ -5,7 +5,7 @@
 use softgrip::controller::FingerShape;
 use softgrip::{FlsConfig, FlsModel, QuadratureOrder, Shape};
 use softgrip_calibrate::lab_csv::{Indentation, SlipOnset};
-use softgrip_calibrate::{calibrate, CalibError, Setup};
+use softgrip_calibrate::{calibrate, CalibError, Calibration, Setup};
 
 struct Truth {
     mu: f64,
@@ -74,17 +74,22 @@ fn setup(shape: FingerShape) -> Setup {
     }
 }
 
+/// The calibration of `TRUTH`'s exact indentations and `slip`.
+fn fit_truth(shape: FingerShape, slip: &[SlipOnset]) -> Calibration {
+    calibrate(
+        &setup(shape),
+        "ind.csv",
+        &indentations(&TRUTH),
+        "slip.csv",
+        slip,
+    )
+    .unwrap()
+}
+
 #[test]
 fn exact_data_give_the_exact_parameters() {
     for shape in FingerShape::ALL {
-        let cal = calibrate(
-            &setup(shape),
-            "ind.csv",
-            &indentations(&TRUTH),
-            "slip.csv",
-            &onsets(&TRUTH, shape, &[0.3, 1.0]),
-        )
-        .unwrap();
+        let cal = fit_truth(shape, &onsets(&TRUTH, shape, &[0.3, 1.0]));
         let rel = |v: f64, t: f64| (v / t - 1.0).abs();
         assert!(
             rel(cal.c.value, TRUTH.c) < 1e-8,
@@ -192,4 +197,63 @@ fn too_few_rows_are_refused_with_the_minimum() {
         .unwrap_err()
         .to_string()
         .contains("at least 3 onsets with a tangential force"));
+}
+
+/// On exact data of a finger the model describes, the friction contact changes nothing
+/// the data pin: `μ` is the pure-force onsets' (exact), the refit moves `c` (not the
+/// half-length) and finds the indentation's within the tabulated surface's
+/// interpolation; `k`, `γ` stay; its conservative values are the joint fit's.
+#[test]
+fn on_exact_data_the_friction_contact_is_the_joint_fit() {
+    use softgrip_calibrate::friction_contact::Refit;
+    for shape in FingerShape::ALL {
+        let slip = onsets(&TRUTH, shape, &[0.3, 1.0]);
+        let joint = fit_truth(shape, &slip);
+        let fc = joint.with_friction_contact("slip.csv", &slip).unwrap();
+        let note = fc.friction_contact.as_ref().unwrap();
+        assert_eq!(note.refit, Refit::Scale, "{shape:?}");
+        let rel = |v: f64, t: f64| (v / t - 1.0).abs();
+        assert!(
+            rel(fc.mu.value, TRUTH.mu) < 1e-12,
+            "{shape:?} mu {}",
+            fc.mu.value
+        );
+        assert!(
+            rel(fc.c.value, TRUTH.c) < 0.01,
+            "{shape:?} c {}",
+            fc.c.value
+        );
+        assert_eq!(fc.half_length_m, 0.01);
+        assert_eq!(
+            (fc.k.value, fc.gamma.value),
+            (joint.k.value, joint.gamma.value)
+        );
+        assert_eq!(note.joint_mu, joint.mu.value);
+        assert_eq!(fc.conservative(), joint.conservative());
+        assert_eq!(fc.joint(), joint);
+        // Refitting again starts from the joint fit: the same values.
+        assert_eq!(fc.with_friction_contact("slip.csv", &slip).unwrap(), fc);
+        // Conservative values are not refitted.
+        assert!(joint
+            .conservative()
+            .with_friction_contact("s", &slip)
+            .is_err());
+    }
+}
+
+/// Without two pure-force onsets there is no slip-test `μ`: refused, naming the file
+/// and the minimum.
+#[test]
+fn the_friction_contact_needs_two_pure_force_onsets() {
+    let slip: Vec<SlipOnset> = onsets(&TRUTH, FingerShape::Rect, &[0.3, 1.0])
+        .into_iter()
+        .filter(|o| !(o.torsional_moment_nm == 0.0))
+        .collect();
+    let joint = fit_truth(FingerShape::Rect, &slip);
+    let e = joint.with_friction_contact("slip.csv", &slip).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.starts_with("slip.csv:") && msg.contains("at least 2 pure-force"),
+        "{msg}"
+    );
 }

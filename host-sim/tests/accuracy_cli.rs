@@ -1,20 +1,12 @@
 //! The `accuracy` command line: the quick report's sections, tables and plot, and its exit
 //! code on an unwritable `--out`. No timing assertions: only that times are finite.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .arg("accuracy")
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::host_sim(&[&["accuracy"], args].concat())
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -3,22 +3,15 @@
 //! `--conservative`'s directions; and the round trip experiment → calibrate → a finger
 //! TOML the scene format reads.
 
+mod common;
+
 use host_sim::sim::effects::EffectSettings;
 use host_sim::sim::scene::Scene;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn host_sim(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::host_sim(args)
 }
 
 fn dir(name: &str) -> PathBuf {

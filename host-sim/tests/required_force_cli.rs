@@ -1,18 +1,9 @@
 //! The `required-force` command line: its JSON, the disc's closed form, and its errors.
 
-use std::process::Command;
+mod common;
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .arg("required-force")
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::host_sim(&[&["required-force"], args].concat())
 }
 
 fn json(args: &[&str]) -> serde_json::Value {

@@ -11,25 +11,17 @@
 //!   truth) on thousands of mutated scene files and on random text: never a panic; every
 //!   error is one line.
 
+mod common;
+
 use host_sim::sim::run::controller_config;
 use host_sim::sim::scene::Scene;
 use host_sim::sim::truth::Truth;
-use std::process::Command;
 
 /// The default safety factor, which these runs take.
 const SAFETY: f64 = softgrip::controller::ControllerConfig::DEFAULT.safety;
 
 fn run(cmd: &str, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .arg(cmd)
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::host_sim(&[&[cmd], args].concat())
 }
 
 /// A finite number at `v[key]`, or a failure naming the case.

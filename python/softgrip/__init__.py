@@ -205,6 +205,7 @@ def calibrate(
     shape: str = "rect",
     half_length_m: float = 0.01,
     conservative: bool = False,
+    friction_contact: bool = False,
 ) -> dict[str, Any]:
     """Fits the finger's parameters to a lab's files, as ``host-sim calibrate`` (the same
     code: the crate ``softgrip-calibrate``; docs/calibration.md).
@@ -214,7 +215,10 @@ def calibrate(
     (docs/experiments.md). ``shape`` "rect" (a hemicylinder) or "disc" (a hemisphere);
     ``half_length_m`` the hemicylinder's half-length l [m] (measured, not fitted);
     ``conservative`` moves every parameter to the end of its 95 % interval that lowers the
-    grip's capacity.
+    grip's capacity. ``friction_contact`` (``--friction-contact``) then takes ``mu`` from
+    the pure-force onsets and refits ``c`` (on a long hemicylinder, the half-length) to
+    the pure-torsion onsets: exact on pure loads, less so between them (docs/calibration.md);
+    not with ``conservative``.
 
     Returns ``host-sim calibrate --format json``'s object: each parameter under its TOML
     name (``mu``, ``k``, ``c``, ``gamma``, ``skewed_pressure``) as ``{"value", "ci95",
@@ -230,6 +234,7 @@ def calibrate(
         shape=str(shape),
         half_length_m=float(half_length_m),
         conservative=bool(conservative),
+        friction_contact=bool(friction_contact),
     )
     r = json.loads(report)
     r["finger_toml"] = toml_text

@@ -64,6 +64,7 @@ def calibrate(
     shape: Literal["rect", "disc"] = "rect",
     half_length_m: float = 0.01,
     conservative: bool = False,
+    friction_contact: bool = False,
 ) -> dict[str, Any]:
     """Fits mu, k, c, gamma and the skew to lab CSVs, as host-sim calibrate; returns its JSON
     plus finger_toml and controller (Controller keywords). "rect" is a hemicylinder."""

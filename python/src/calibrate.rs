@@ -45,7 +45,7 @@ fn calib_err(py: Python<'_>, e: CalibError, ind_name: &str) -> PyErr {
 
 /// Fits the finger to the two lab files; returns `(report JSON, finger TOML)`.
 #[pyfunction]
-#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false))]
+#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false, friction_contact = false))]
 pub(crate) fn calibrate(
     py: Python<'_>,
     indentation: std::path::PathBuf,
@@ -53,7 +53,17 @@ pub(crate) fn calibrate(
     shape: &str,
     half_length_m: f64,
     conservative: bool,
+    friction_contact: bool,
 ) -> PyResult<(String, String)> {
+    if conservative && friction_contact {
+        return Err(bad(
+            py,
+            "friction_contact",
+            "conservative values are the joint fit's: conservative and friction_contact \
+             cannot both be set"
+                .to_string(),
+        ));
+    }
     let setup = Setup {
         shape: shape_of(py, shape)?,
         half_length_m: finite(py, "half_length_m", half_length_m)?,
@@ -64,6 +74,13 @@ pub(crate) fn calibrate(
     let onsets = parse_slip(&slip_name, &slip_text).map_err(|e| calib_err(py, e, &ind_name))?;
     let fitted = softgrip_calibrate::calibrate(&setup, &ind_name, &ind, &slip_name, &onsets)
         .map_err(|e| calib_err(py, e, &ind_name))?;
+    let fitted = if friction_contact {
+        fitted
+            .with_friction_contact(&slip_name, &onsets)
+            .map_err(|e| bad(py, "slip", e.to_string()))?
+    } else {
+        fitted
+    };
     let cal = if conservative {
         fitted.conservative()
     } else {

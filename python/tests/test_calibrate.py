@@ -1,7 +1,9 @@
 """softgrip.calibrate and softgrip.load_finger: the same fit as host-sim calibrate, on lab
 files host-sim experiment writes, and a calibrated finger that Controller runs."""
 
+import csv
 import json
+import math
 import subprocess
 
 import pytest
@@ -45,6 +47,41 @@ def test_conservative_lowers_mu(lab):
     low = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", conservative=True)
     assert low["mu"]["value"] == fit["mu"]["ci95"][0] < fit["mu"]["value"]
     assert low["conservative"] is True
+
+
+def test_friction_contact_equals_the_cli(host_sim, lab):
+    cli = subprocess.run(
+        [host_sim, "calibrate", "--indentation", lab / "indentation.csv", "--slip",
+         lab / "slip.csv", "--format", "json", "--friction-contact"],
+        check=True, capture_output=True, text=True,
+    )
+    want = json.loads(cli.stdout)
+    got = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", friction_contact=True)
+    for key in want:
+        assert got[key] == want[key], key
+    fit = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv")
+    # On data from the model the refit moves c (not the half-length), and the refitted
+    # finger's pure-torsion limit matches the pure-torsion onsets on average.
+    assert got["friction_contact"]["refit"] == "scale"
+    assert got["friction_contact"]["joint_mu"] == fit["mu"]["value"]
+    assert got["controller"]["c_m_per_n_gamma"] == got["c"]["value"]
+    assert got["half_length_m"] == 0.01
+    assert "friction_contact" not in fit
+    with open(lab / "slip.csv") as f:
+        torsion = [r for r in csv.DictReader(f) if float(r["tangential_force_n"]) == 0.0]
+    n = [float(r["normal_force_n"]) for r in torsion]
+    m = [float(r["torsional_moment_nm"]) for r in torsion]
+    kw = dict(got["controller"], safety=1.0, mode="table")
+    n_slip = softgrip.required_force([0.0] * len(m), m, **kw)["n_slip"]
+    mean_ln = sum(math.log(a / b) for a, b in zip(n_slip, n)) / len(n)
+    assert abs(mean_ln) < 0.01, mean_ln
+
+
+def test_friction_contact_is_not_conservative(lab):
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", conservative=True,
+                           friction_contact=True)
+    assert e.value.param == "friction_contact"
 
 
 def test_a_bad_row_names_the_file_line_and_column(lab, tmp_path):

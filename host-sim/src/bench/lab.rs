@@ -5,17 +5,18 @@
 //! with 2 % relative noise on every recorded value ([`LAB_NOISE`]): an indentation test
 //! (contact half-width), a slip test (tangential ramps) and a torsion test (moment
 //! ramps). From those rows:
-//! - **softgrip** gets `k` and `γ` from `softgrip_calibrate` (the same fit as
-//!   `host-sim calibrate`, on a surface grid shared by every trial of a shape), `μ` from
-//!   the slip test (as the cone), and the scale `c` of its contact law refitted to the
-//!   torsion test at that `μ`, `k` and `γ` ([`friction_contact`]): the contact size
-//!   that friction sees. On a finger softgrip models this is the indentation's `c`; on
-//!   the brush finger, whose pressure is more peaked at the centre than any `k ≥ 1`
-//!   allows, the joint fit would otherwise lower `μ` to fit the torsion onsets and ask
-//!   every tangential load for more force than it needs, while still overrating the
-//!   finger's torsion. On a long hemicylinder no `c` fits (its torsion is set by its
-//!   length): there the half-length friction sees is refitted instead, at the
-//!   indentation's `c`, and softgrip is told it in place of the geometric one;
+//! - **softgrip** is calibrated as `host-sim calibrate --friction-contact` calibrates
+//!   a finger (the same code, `softgrip_calibrate`, on a surface grid shared by every
+//!   trial of a shape): `k` and `γ` from the joint fit, `μ` from the slip test (as the
+//!   cone), and the scale `c` of its contact law refitted to the torsion test at that
+//!   `μ`, `k` and `γ` ([`softgrip_calibrate::friction_contact`]): the contact size that
+//!   friction sees. On a finger softgrip models this is the indentation's `c`; on the
+//!   brush finger, whose pressure is more peaked at the centre than any `k ≥ 1` allows,
+//!   the joint fit would otherwise lower `μ` to fit the torsion onsets and ask every
+//!   tangential load for more force than it needs, while still overrating the finger's
+//!   torsion. On a long hemicylinder no `c` fits (its torsion is set by its length):
+//!   there the half-length friction sees is refitted instead, at the indentation's `c`,
+//!   and softgrip is told it in place of the geometric one;
 //! - **the cone** (`coulomb`) gets `μ` from the slip test: the geometric mean of the
 //!   onsets' `f_t/N`;
 //! - **`fixed-torsion` and `box`** get that `μ` and their fixed patch from the torsion
@@ -29,6 +30,7 @@
 use crate::experiment::protocol::{self, Noise, Protocol};
 use crate::experiment::Rig;
 use softgrip::controller::FingerShape;
+use softgrip_calibrate::friction_contact::slip_test_mu;
 use softgrip_calibrate::lab_csv::{Indentation, OnsetKind, SlipOnset};
 use softgrip_calibrate::surface::SurfaceGrid;
 use softgrip_calibrate::Setup;
@@ -46,7 +48,7 @@ pub const GRID_ASPECTS: (f64, f64, usize) = (0.15, 400.0, 53);
 /// What the controllers believe about one finger.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Beliefs {
-    /// softgrip's `μ` (joint fit).
+    /// softgrip's `μ` (the slip test's, as the friction contact takes it).
     pub mu: f64,
     /// softgrip's pressure exponent `k`.
     pub k: f64,
@@ -55,7 +57,7 @@ pub struct Beliefs {
     /// softgrip's `γ`.
     pub gamma: f64,
     /// softgrip's half-length [m]: the geometric one, or the one friction sees when the
-    /// torsion onsets call for it ([`friction_contact`]).
+    /// torsion onsets call for it ([`softgrip_calibrate::friction_contact`]).
     pub half_length_m: f64,
     /// The cone's, the box's and fixed-torsion's `μ` (slip test).
     pub cone_mu: f64,
@@ -126,41 +128,32 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
         .map_err(|e| format!("calibration: {e}"))
     };
     let shared = grid(shape)?;
-    let mut cal = fit(shared)?;
-    // A grid clamps the aspect at its ends, which would bias the fit (and the torsion
-    // scale below) for a finger beyond them: such a finger gets the grid its data need,
-    // as `host-sim calibrate` builds it.
-    let own;
-    let g = if inside_shared_grid(shape, half_length_m, cal.c.value, cal.gamma.value) {
-        shared
+    let cal = fit(shared)?;
+    // A grid clamps the aspect at its ends, which would bias the fit (and the friction
+    // contact's refit) for a finger beyond them: such a finger is calibrated as
+    // `host-sim calibrate --friction-contact` calibrates it, on the grids its data need.
+    let cal = if inside_shared_grid(shape, half_length_m, cal.c.value, cal.gamma.value) {
+        cal.with_friction_contact_on(shared, "slip", &lab.onsets)
     } else {
-        own = softgrip_calibrate::grid_for(&setup, &lab.indentation, &lab.onsets)
+        let own = softgrip_calibrate::grid_for(&setup, &lab.indentation, &lab.onsets)
             .map_err(|e| format!("calibration: {e}"))?;
-        cal = fit(&own)?;
-        &own
-    };
-    let of = |kind| lab.onsets.iter().filter(move |o| o.kind() == kind);
-    let cone_mu =
-        geometric_mean(of(OnsetKind::Force).map(|o| o.tangential_force_n / o.normal_force_n))
-            .ok_or("calibration: no slip onset")?;
+        fit(&own)?.with_friction_contact("slip", &lab.onsets)
+    }
+    .map_err(|e| format!("calibration: {e}"))?;
+    let cone_mu = slip_test_mu(&lab.onsets).ok_or("calibration: no slip onset")?;
     let torsion_arm_m = geometric_mean(
-        of(OnsetKind::Torsion).map(|o| o.torsional_moment_nm / (cone_mu * o.normal_force_n)),
+        lab.onsets
+            .iter()
+            .filter(|o| o.kind() == OnsetKind::Torsion)
+            .map(|o| o.torsional_moment_nm / (cone_mu * o.normal_force_n)),
     )
     .ok_or("calibration: no torsion onset")?;
-    let torsion: Vec<&SlipOnset> = of(OnsetKind::Torsion).collect();
-    let (c, friction_half_length_m) = friction_contact(
-        g,
-        &setup,
-        (cone_mu, cal.k.value, cal.gamma.value),
-        cal.c.value,
-        &torsion,
-    );
     Ok(Beliefs {
-        mu: cone_mu,
+        mu: cal.mu.value,
         k: cal.k.value,
-        c,
+        c: cal.c.value,
         gamma: cal.gamma.value,
-        half_length_m: friction_half_length_m,
+        half_length_m: cal.half_length_m,
         cone_mu,
         torsion_arm_m,
     })
@@ -178,63 +171,4 @@ pub fn inside_shared_grid(shape: FingerShape, half_length_m: f64, c: f64, gamma:
         let aspect = half_length_m / (c * n.powf(gamma));
         (lo..=hi).contains(&aspect)
     })
-}
-
-/// The contact law's scale `c` [m/N^γ] and the half-length [m] that friction sees: those
-/// at which the model's pure-torsion limit `μ·N·a(N)·pitch(k, l/a(N))` matches the torsion
-/// onsets on average in `ln m` (`(μ, k, γ)` fixed). First `c`, within a factor e³ of
-/// `c0` (the indentation's) at the geometric half-length `l0`; when no `c` there
-/// matches (a long hemicylinder's torsion is set by its length, whatever its width),
-/// the half-length, within a factor e of `l0`, at `c0`. 60 bisections in the log of
-/// either; `(c0, l0)` when neither brackets or there is no torsion onset.
-pub fn friction_contact(
-    grid: &SurfaceGrid,
-    setup: &Setup,
-    (mu, k, gamma): (f64, f64, f64),
-    c0: f64,
-    torsion: &[&SlipOnset],
-) -> (f64, f64) {
-    let l0 = setup.half_length_m;
-    if torsion.is_empty() {
-        return (c0, l0);
-    }
-    let kappa = 1.0 / k;
-    // Mean of ln(measured / modelled): decreasing in ln c and in ln l.
-    let residual = |c: f64, l: f64| {
-        let sum: f64 = torsion
-            .iter()
-            .map(|o| {
-                let n = o.normal_force_n;
-                let a = c * n.powf(gamma);
-                let pitch = grid.pitch(kappa, l / a);
-                (o.torsional_moment_nm / (mu * n * a * pitch)).ln()
-            })
-            .sum();
-        sum / torsion.len() as f64
-    };
-    let root = |f: &dyn Fn(f64) -> f64, x0: f64, span: f64| -> Option<f64> {
-        let (mut lo, mut hi) = (x0.ln() - span, x0.ln() + span);
-        // A bracket that does not change sign (or a NaN) has no root.
-        if !(f(lo.exp()) > 0.0 && f(hi.exp()) < 0.0) {
-            return None;
-        }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if f(mid.exp()) > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some((0.5 * (lo + hi)).exp())
-    };
-    if let Some(c) = root(&|c| residual(c, l0), c0, 3.0) {
-        return (c, l0);
-    }
-    if setup.shape == FingerShape::Rect {
-        if let Some(l) = root(&|l| residual(c0, l), l0, 1.0) {
-            return (c0, l);
-        }
-    }
-    (c0, l0)
 }

@@ -1,9 +1,25 @@
-//! What the tests share: whether QEMU and the firmware they need are there, and the
-//! check of a generated block of a page. Each test binary uses part of it.
+//! What the tests share: whether QEMU and the firmware they need are there, the check of
+//! a generated block of a page, and a run of the `host-sim` binary. Each test binary uses
+//! part of it.
 #![allow(dead_code)]
 
 use host_sim::link::qemu;
 use std::path::PathBuf;
+use std::process::Command;
+
+/// Runs the `host-sim` binary with `args`: its exit code (-1 if a signal ended it),
+/// stdout and stderr.
+pub fn host_sim(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
 
 /// QEMU's directory if QEMU and the firmware of every variant in `variants` are there
 /// ([`qemu::available`]). Otherwise `None`, after printing the scripts that set them up;

@@ -47,8 +47,14 @@ pub struct CalibrateArgs {
     format: Format,
     /// Report and write every parameter at the end of its 95 % interval that lowers the
     /// required-force rule's capacity (docs/calibration.md).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "friction_contact")]
     conservative: bool,
+    /// After the joint fit, take mu from the pure-force onsets alone and refit the
+    /// contact scale c (on a long hemicylinder, the half-length) to the torsion onsets:
+    /// the contact friction sees, for a finger whose pressure the model does not
+    /// describe (docs/calibration.md, "The contact friction sees").
+    #[arg(long)]
+    friction_contact: bool,
     /// Write the finger TOML ([finger], and [effect.skewed_pressure] if skewed) here.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -84,7 +90,14 @@ pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
         shape: args.shape,
         half_length_m: l,
     };
-    let fitted = calibrate(&setup, &ind_name, &ind, &slip_name, &slip).map_err(calib_error)?;
+    let joint = calibrate(&setup, &ind_name, &ind, &slip_name, &slip).map_err(calib_error)?;
+    let fitted = if args.friction_contact {
+        joint
+            .with_friction_contact(&slip_name, &slip)
+            .map_err(calib_error)?
+    } else {
+        joint
+    };
     let cal = if args.conservative {
         fitted.conservative()
     } else {

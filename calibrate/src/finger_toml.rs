@@ -58,7 +58,7 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
     };
     let _ = writeln!(s, "# softgrip finger calibrated from {source}: {kind}.");
     if let Some(fc) = &cal.friction_contact {
-        let _ = writeln!(s, "# {}.", fc.describe(sig4));
+        let _ = writeln!(s, "# {}.", fc.describe(cal.half_length_m, sig4));
     }
     let skew = cal.skew();
     if skew.is_some() {
@@ -153,7 +153,7 @@ pub fn report_text(cal: &Calibration) -> String {
         }
     );
     if let Some(fc) = &cal.friction_contact {
-        let _ = writeln!(s, "{}", fc.describe(sig4));
+        let _ = writeln!(s, "{}", fc.describe(cal.half_length_m, sig4));
     }
     s
 }

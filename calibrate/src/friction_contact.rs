@@ -276,15 +276,17 @@ impl Calibration {
 }
 
 impl FrictionContact {
-    /// One line for people: what moved, and from what (`sig` formats a number).
-    pub fn describe(&self, sig: impl Fn(f64) -> String) -> String {
+    /// One line for people: what moved, to what (`half_length_m`, the calibration's), and
+    /// from what (`sig` formats a number).
+    pub fn describe(&self, half_length_m: f64, sig: impl Fn(f64) -> String) -> String {
         let moved = match self.refit {
             Refit::Scale => format!(
                 "c refitted to the torsion onsets (joint fit: {})",
                 sig(self.joint_c)
             ),
             Refit::HalfLength => format!(
-                "no c fits the torsion onsets; half-length refitted to them (geometric: {} m)",
+                "no c fits the torsion onsets; half-length refitted to them: {} m (geometric: {} m)",
+                sig(half_length_m),
                 sig(self.geometric_half_length_m)
             ),
             Refit::Neither => {

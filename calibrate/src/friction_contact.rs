@@ -21,8 +21,8 @@
 //! test's), so [`Calibration::conservative`] of a refitted calibration is the joint
 //! fit's ([`Calibration::joint`]).
 //!
-//! Cost: a surface grid over the refit's reach (about 0.3 s, [`grid_for_refit`]) and 120
-//! bisections of a mean over the torsion onsets.
+//! Cost: a surface grid over the refit's reach ([`grid_for_refit`]) and 120 bisections
+//! of a mean over the torsion onsets: about 0.2 s (docs/calibration.md).
 
 use crate::calibration::{Calibration, Estimate, Setup};
 use crate::error::CalibError;

@@ -59,16 +59,19 @@ pub enum Refit {
 pub struct FrictionContact {
     /// What the torsion onsets moved.
     pub refit: Refit,
-    /// The joint fit's `μ`.
-    pub joint_mu: f64,
-    /// The joint fit's `c` [m/N^γ] (the indentation's contact law).
-    pub joint_c: f64,
-    #[serde(skip)]
-    joint_mu_estimate: Estimate,
-    #[serde(skip)]
-    joint_c_estimate: Estimate,
+    /// The joint fit's `μ` (its value alone in JSON).
+    #[serde(serialize_with = "value_only")]
+    pub joint_mu: Estimate,
+    /// The joint fit's `c` [m/N^γ], the indentation's contact law (its value alone in
+    /// JSON).
+    #[serde(serialize_with = "value_only")]
+    pub joint_c: Estimate,
     /// The finger's geometric half-length [m].
     pub geometric_half_length_m: f64,
+}
+
+fn value_only<S: serde::Serializer>(e: &Estimate, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(e.value)
 }
 
 /// `μ` from the pure-force onsets: the geometric mean of their `f_t/N`; `None` without
@@ -168,6 +171,16 @@ pub fn grid_for_refit(cal: &Calibration, slip: &[SlipOnset]) -> Result<SurfaceGr
     SurfaceGrid::build(shape, amin, amax, nodes, false)
 }
 
+/// Conservative values are refused: the refit has no interval to take an end of.
+fn refuse_conservative(cal: &Calibration) -> Result<(), CalibError> {
+    if cal.conservative {
+        return Err(CalibError::Setting(
+            "friction contact: refits a fitted calibration, not conservative values".to_string(),
+        ));
+    }
+    Ok(())
+}
+
 impl Calibration {
     /// This (joint-fit) calibration with the contact friction sees: `μ` from the slip
     /// test's pure-force onsets (its 95 % interval a t interval of their `ln(f_t/N)`),
@@ -181,12 +194,6 @@ impl Calibration {
         slip_file: &str,
         slip: &[SlipOnset],
     ) -> Result<Self, CalibError> {
-        if self.conservative {
-            return Err(CalibError::Setting(
-                "friction contact: refits a fitted calibration, not conservative values"
-                    .to_string(),
-            ));
-        }
         let joint = self.joint();
         let grid = grid_for_refit(&joint, slip)?;
         joint.with_friction_contact_on(&grid, slip_file, slip)
@@ -196,8 +203,8 @@ impl Calibration {
     pub fn joint(&self) -> Self {
         let mut out = self.clone();
         if let Some(fc) = out.friction_contact.take() {
-            out.mu = fc.joint_mu_estimate;
-            out.c = fc.joint_c_estimate;
+            out.mu = fc.joint_mu;
+            out.c = fc.joint_c;
             out.half_length_m = fc.geometric_half_length_m;
         }
         out
@@ -211,6 +218,7 @@ impl Calibration {
         slip_file: &str,
         slip: &[SlipOnset],
     ) -> Result<Self, CalibError> {
+        refuse_conservative(self)?;
         if self.friction_contact.is_some() {
             return self.joint().with_friction_contact_on(grid, slip_file, slip);
         }
@@ -265,10 +273,8 @@ impl Calibration {
         out.half_length_m = l;
         out.friction_contact = Some(FrictionContact {
             refit: how,
-            joint_mu: self.mu.value,
-            joint_c: self.c.value,
-            joint_mu_estimate: self.mu.clone(),
-            joint_c_estimate: self.c.clone(),
+            joint_mu: self.mu.clone(),
+            joint_c: self.c.clone(),
             geometric_half_length_m: self.half_length_m,
         });
         Ok(out)
@@ -282,7 +288,7 @@ impl FrictionContact {
         let moved = match self.refit {
             Refit::Scale => format!(
                 "c refitted to the torsion onsets (joint fit: {})",
-                sig(self.joint_c)
+                sig(self.joint_c.value)
             ),
             Refit::HalfLength => format!(
                 "no c fits the torsion onsets; half-length refitted to them: {} m (geometric: {} m)",
@@ -297,7 +303,7 @@ impl FrictionContact {
         };
         format!(
             "friction contact: mu from the pure-force onsets (joint fit: {}); {moved}",
-            sig(self.joint_mu)
+            sig(self.joint_mu.value)
         )
     }
 }

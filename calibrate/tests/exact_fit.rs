@@ -228,7 +228,7 @@ fn on_exact_data_the_friction_contact_is_the_joint_fit() {
             (fc.k.value, fc.gamma.value),
             (joint.k.value, joint.gamma.value)
         );
-        assert_eq!(note.joint_mu, joint.mu.value);
+        assert_eq!(note.joint_mu.value, joint.mu.value);
         assert_eq!(fc.conservative(), joint.conservative());
         assert_eq!(fc.joint(), joint);
         // Refitting again starts from the joint fit: the same values.

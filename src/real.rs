@@ -29,6 +29,12 @@ pub trait Real:
     fn of_usize(n: usize) -> Self {
         Self::of(n as f64)
     }
+    /// Converts a tick count (rounding to nearest for `f32`). `f32` overrides it with a
+    /// direct conversion: on the M4F one `VCVT`, where going through `f64` is a software
+    /// routine.
+    fn of_u32(n: u32) -> Self {
+        Self::of(f64::from(n))
+    }
     /// Natural logarithm (libm).
     fn libm_ln(self) -> Self;
     /// `e^x` (libm).
@@ -126,6 +132,10 @@ impl Real for f32 {
     #[inline(always)]
     fn to_f64(self) -> f64 {
         self as f64
+    }
+    #[inline(always)]
+    fn of_u32(n: u32) -> Self {
+        n as f32
     }
 }
 

@@ -3,13 +3,13 @@
 //! A shake multiplies the safety factor by `CYCLIC_SAFETY_FACTOR` from its second trough
 //! until twice `SWING_WINDOW_S` after its last, while a steady noisy hold, one lift, one
 //! twist, a slow sway and a ripple within sensor noise never do. A load that stays within
-//! a swing's depth for `STEADY_HOLD_S` multiplies it by `STEADY_SAFETY_FACTOR` until it
-//! falls past that depth or rises by more than `STEADY_RISE_N`, and the force asked never
-//! falls below `N_slip`.
+//! a swing's depth for `STEADY_HOLD_S` multiplies it by a factor that falls linearly from
+//! 1 to `STEADY_SAFETY_FACTOR` over `STEADY_RAMP_S`, until it falls past that depth or
+//! rises by more than `STEADY_RISE_N`, and the force asked never falls below `N_slip`.
 
 use softgrip::controller::lead::{
-    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_RISE_N, STEADY_SAFETY_FACTOR,
-    SWING_WINDOW_S,
+    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_RAMP_S, STEADY_RISE_N,
+    STEADY_SAFETY_FACTOR, SWING_WINDOW_S,
 };
 use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 use std::f64::consts::TAU;
@@ -224,7 +224,10 @@ fn stepped_hold(step: f64, ramp_s: f64, t: f64) -> (f64, f64) {
 }
 
 #[test]
-fn a_steady_hold_earns_the_steady_factor_after_the_hold_time() {
+fn a_steady_hold_ramps_in_the_steady_factor_after_the_hold_time() {
+    // The ramp: from the hold's end the factor falls by `(1 − STEADY_SAFETY_FACTOR)` over
+    // `STEADY_RAMP_S` of 1 ms ticks, the same step on every tick.
+    let step = (1.0 - STEADY_SAFETY_FACTOR) * 1e-3 / STEADY_RAMP_S;
     for cfg in configs() {
         let what = format!("{:?} lag {}", cfg.mode, cfg.actuator_lag_s);
         let ticks = run(cfg, 1.4, 0.02, |t| stepped_hold(1.0, 0.1, t));
@@ -233,12 +236,42 @@ fn a_steady_hold_earns_the_steady_factor_after_the_hold_time() {
             if k.t_s < STEADY_HOLD_S - 0.002 {
                 assert_eq!(k.margin, 1.0, "{what}: at {} s", k.t_s);
                 assert!((k.req_over_plain - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
-            } else if k.t_s > STEADY_HOLD_S + 0.03 {
+            } else if k.t_s > STEADY_HOLD_S + STEADY_RAMP_S + 0.03 {
                 assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
                 assert!((k.req_over_steady - 1.0).abs() < 0.05, "{what}: {}", k.t_s);
                 assert!(k.req_over_plain < 0.9, "{what}: {}", k.t_s);
             }
         }
+        // Never rising, and linear in between: every tick of the ramp is one step down.
+        let ramp: Vec<_> = ticks
+            .windows(2)
+            .filter(|w| w[1].margin < w[0].margin)
+            .collect();
+        assert_eq!(ramp.len() as f64, (STEADY_RAMP_S * 1e3).ceil(), "{what}");
+        for w in ticks.windows(2) {
+            assert!(w[1].margin <= w[0].margin, "{what}: at {} s", w[1].t_s);
+        }
+        for w in &ramp {
+            assert!(
+                (w[0].margin - w[1].margin - step).abs() < 1e-9,
+                "{what}: at {} s, a step of {}",
+                w[1].t_s,
+                w[0].margin - w[1].margin
+            );
+        }
+        // Halfway down the ramp the force asked is halfway between the plain and the
+        // steady one (`N_req` is linear in the safety factor once above `N_slip`).
+        let mid = &ramp[ramp.len() / 2][1];
+        assert!(
+            (mid.margin - (1.0 + STEADY_SAFETY_FACTOR) / 2.0).abs() < 2.0 * step,
+            "{what}"
+        );
+        assert!(
+            mid.req_over_plain < 1.0 && mid.req_over_steady > 1.0,
+            "{what}: {} x the plain, {} x the steady",
+            mid.req_over_plain,
+            mid.req_over_steady
+        );
     }
 }
 
@@ -263,7 +296,8 @@ fn a_load_that_moves_past_a_swing_depth_ends_the_steady_factor() {
             assert!(ended.t_s < crossed_s, "{what}: ended at {} s", ended.t_s);
             // Then the configured factor holds for at least a hold time (the load may settle
             // within a depth of where it passed it, before the ramp's end), and the steady
-            // factor is back within two hold times of the ramp's end.
+            // factor is back, ramped in, within two hold times and a steady ramp of the
+            // load's ramp's end.
             for k in ticks
                 .iter()
                 .filter(|k| k.t_s >= ended.t_s && k.t_s < ended.t_s + STEADY_HOLD_S - 0.002)
@@ -274,7 +308,7 @@ fn a_load_that_moves_past_a_swing_depth_ends_the_steady_factor() {
             // may start the hold once more.)
             for k in ticks
                 .iter()
-                .filter(|k| k.t_s > 1.55 + 2.0 * STEADY_HOLD_S + 0.05)
+                .filter(|k| k.t_s > 1.55 + 2.0 * STEADY_HOLD_S + STEADY_RAMP_S + 0.05)
             {
                 assert_eq!(k.margin, STEADY_SAFETY_FACTOR, "{what}: at {} s", k.t_s);
             }

@@ -322,11 +322,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// slipped keeps its whole margin until the slip is forgotten.
     #[inline]
     fn load_factor(&self) -> T {
-        let factor = self.lead.safety_factor();
-        if factor < T::one() && !self.slip_response.pristine() {
-            T::one()
+        if self.slip_response.pristine() {
+            self.lead.safety_factor()
         } else {
-            factor
+            self.lead.cyclic_factor_or_one()
         }
     }
 
@@ -399,8 +398,15 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         }
         // The cyclic or the steady load's factor; never below `N_slip` (a steady factor
         // below 1 on a safety factor near 1).
-        let factor = self.load_factor();
-        let safety = greater(self.slip_response.safety(self.safety) * factor, T::one());
+        // (One test of `pristine` for both: the M4F's tick budget.)
+        let (factor, safety) = if self.slip_response.pristine() {
+            let factor = self.lead.safety_factor();
+            (factor, self.safety * factor)
+        } else {
+            let factor = self.lead.cyclic_factor_or_one();
+            (factor, self.slip_response.safety(self.safety) * factor)
+        };
+        let safety = greater(safety, T::one());
         let slip = self
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);

@@ -39,7 +39,8 @@ class TickStatus:
     @property
     def margin(self) -> float:
         """The margin multiplying the safety factor: a slip signal raises it, a cycling load
-        multiplies it by 1.45 and a steady one by 0.85 (the safety asked is never below 1)."""
+        multiplies it by 1.45 and a steady one by a factor ramping from 1 to 0.85 over 0.5 s
+        (the safety asked is never below 1)."""
 
 class Controller:
     """The slip-prevention controller (f64 precompute and tick).

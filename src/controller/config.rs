@@ -198,7 +198,8 @@ with_schema! {
         /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
         /// While the load cycles it is multiplied by the lead's `CYCLIC_SAFETY_FACTOR`;
         /// once the load has been steady for `STEADY_HOLD_S` (and no slip is remembered)
-        /// by `STEADY_SAFETY_FACTOR`, the product never below 1 (`controller::lead`).
+        /// by a factor that ramps down to `STEADY_SAFETY_FACTOR` over `STEADY_RAMP_S`,
+        /// the product never below 1 (`controller::lead`).
         pub safety: f64,
         /// Least commanded normal force `N_min > 0` [N].
         pub n_min_n: f64,
@@ -266,8 +267,8 @@ impl ControllerConfig {
     /// `s = 1.75`, are the ones the bench chose on thirty-two held-out seeds, safety first
     /// on the front of drops against force (`host-sim` `bench::default_choice`;
     /// docs/bench.md, "The default"); a cycling load gets `s` times the lead's
-    /// `CYCLIC_SAFETY_FACTOR` (1.45), a steady one `s` times `STEADY_SAFETY_FACTOR`
-    /// (0.85). Sixteen of those seeds chose `s = 1.65` (and `s = 1.6` before the lead took
+    /// `CYCLIC_SAFETY_FACTOR` (1.45), a steady one `s` times a factor that ramps down to
+    /// `STEADY_SAFETY_FACTOR` (0.85) over `STEADY_RAMP_S` (0.5 s). Sixteen of those seeds chose `s = 1.65` (and `s = 1.6` before the lead took
     /// its rate from the load alone); eight of them alone chose `s = 1.5`; before that
     /// factor they chose `s = 1.75`, and ellipse mode at `s = 1.3` was the default before
     /// that.

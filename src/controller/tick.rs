@@ -74,8 +74,10 @@ pub struct TickOutput<T> {
     /// The margin multiplying the safety factor: 1 until a slip signal raises it (see
     /// [`slip`](super::slip)), times [`CYCLIC_SAFETY_FACTOR`](super::lead::CYCLIC_SAFETY_FACTOR)
     /// while the load cycles (see [`lead`](super::lead), "Cyclic loads") or
-    /// [`STEADY_SAFETY_FACTOR`](super::lead::STEADY_SAFETY_FACTOR) while it is steady
-    /// ("Steady loads"). The force asked is `N_req` at the safety factor times this
+    /// a factor that ramps from 1 down to
+    /// [`STEADY_SAFETY_FACTOR`](super::lead::STEADY_SAFETY_FACTOR) over
+    /// [`STEADY_RAMP_S`](super::lead::STEADY_RAMP_S) while it is steady ("Steady loads").
+    /// The force asked is `N_req` at the safety factor times this
     /// margin, floored at 1: never below `N_slip`.
     pub margin: T,
 }

@@ -268,10 +268,10 @@ impl ControllerConfig {
     /// on the front of drops against force (`host-sim` `bench::default_choice`;
     /// docs/bench.md, "The default"); a cycling load gets `s` times the lead's
     /// `CYCLIC_SAFETY_FACTOR` (1.45), a steady one `s` times a factor that ramps down to
-    /// `STEADY_SAFETY_FACTOR` (0.85) over `STEADY_RAMP_S` (0.5 s). Sixteen of those seeds chose `s = 1.65` (and `s = 1.6` before the lead took
-    /// its rate from the load alone); eight of them alone chose `s = 1.5`; before that
-    /// factor they chose `s = 1.75`, and ellipse mode at `s = 1.3` was the default before
-    /// that.
+    /// `STEADY_SAFETY_FACTOR` (0.85) over `STEADY_RAMP_S` (0.5 s). Sixteen of those seeds
+    /// chose `s = 1.65` (and `s = 1.6` before the lead took its rate from the load alone);
+    /// eight of them alone chose `s = 1.5`; before that factor they chose `s = 1.75`, and
+    /// ellipse mode at `s = 1.3` was the default before that.
     pub const DEFAULT: Self = Self {
         mu: 0.8,
         shape: FingerShape::Rect,

@@ -77,8 +77,8 @@ pub struct TickOutput<T> {
     /// a factor that ramps from 1 down to
     /// [`STEADY_SAFETY_FACTOR`](super::lead::STEADY_SAFETY_FACTOR) over
     /// [`STEADY_RAMP_S`](super::lead::STEADY_RAMP_S) while it is steady ("Steady loads").
-    /// The force asked is `N_req` at the safety factor times this
-    /// margin, floored at 1: never below `N_slip`.
+    /// The force asked is `N_req` at the safety factor times this margin, floored at 1:
+    /// never below `N_slip`.
     pub margin: T,
 }
 

@@ -316,18 +316,22 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// The margin multiplying the safety factor: the slip response's (see
     /// [`slip`](super::slip)) times the cyclic or the steady load's (see [`lead`](super::lead)).
     pub fn margin(&self) -> T {
-        self.slip_response.margin() * self.load_factor()
+        self.slip_response.margin() * self.load_factor_and_safety().0
     }
 
-    /// The load's factor on the safety factor (see [`lead`](super::lead)). The steady
-    /// load's, below 1, only while the slip response is pristine: a contact that has
-    /// slipped keeps its whole margin until the slip is forgotten.
+    /// The load's factor on the safety factor (see [`lead`](super::lead)), and the safety
+    /// factor with the slip response's margin and that factor on it (not yet floored at
+    /// 1). The steady load's factor, below 1, only while the slip response is pristine: a
+    /// contact that has slipped keeps its whole margin until the slip is forgotten. (One
+    /// test of `pristine` for both: the M4F's tick budget.)
     #[inline]
-    fn load_factor(&self) -> T {
+    fn load_factor_and_safety(&self) -> (T, T) {
         if self.slip_response.pristine() {
-            self.lead.safety_factor()
+            let factor = self.lead.safety_factor();
+            (factor, self.safety * factor)
         } else {
-            self.lead.cyclic_factor_or_one()
+            let factor = self.lead.cyclic_factor_or_one();
+            (factor, self.slip_response.safety(self.safety) * factor)
         }
     }
 
@@ -400,14 +404,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         }
         // The cyclic or the steady load's factor; never below `N_slip` (a steady factor
         // below 1 on a safety factor near 1).
-        // (One test of `pristine` for both: the M4F's tick budget.)
-        let (factor, safety) = if self.slip_response.pristine() {
-            let factor = self.lead.safety_factor();
-            (factor, self.safety * factor)
-        } else {
-            let factor = self.lead.cyclic_factor_or_one();
-            (factor, self.slip_response.safety(self.safety) * factor)
-        };
+        let (factor, safety) = self.load_factor_and_safety();
         let safety = greater(safety, T::one());
         let slip = self
             .capacity

@@ -45,7 +45,7 @@ impl<T: Real> ContactSize<T> {
         self.gamma
     }
 
-    /// Contact half-width `a` [m] at normal force `normal_force_n` [N].
+    /// Contact half-width `a` \[m\] at normal force `normal_force_n` \[N\].
     ///
     /// Total: a negative or NaN force counts as no force (`a = 0` for `γ > 0`, `a = c` for
     /// `γ = 0`), `+∞` gives `+∞` for `γ > 0`. Cost: one `powf`.
@@ -57,7 +57,7 @@ impl<T: Real> ContactSize<T> {
         self.c_m_per_n_gamma * n.libm_powf(self.gamma)
     }
 
-    /// The normal force [N] at which the half-width reaches `half_width_m` (the inverse
+    /// The normal force \[N\] at which the half-width reaches `half_width_m` (the inverse
     /// law); `None` for `γ = 0`, where the size does not depend on the force.
     pub fn normal_force_n(&self, half_width_m: T) -> Option<T> {
         if self.gamma == T::zero() {

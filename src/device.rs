@@ -1,4 +1,4 @@
-//! The device side of the link: the firmware loop that serves the [`protocol`] over any
+//! The device side of the link: the firmware loop that serves the [`protocol`](crate::protocol) over any
 //! byte stream and drives the grip actuator.
 //!
 //! [`Device`] owns the controller (built from a [`Request::Configure`]), the frame decoder
@@ -24,7 +24,7 @@
 //! [`SilenceWatch`] (the firmware on TIM2, the host's device thread on `Instant`). After
 //! `stale_timeout_s` of silence the controller moves its command, at its rate limit, to
 //! the fault target (never below the last required force: see
-//! [`Controller`](crate::controller::Controller)), and the actuator follows. A host that
+//! [`crate::controller::Controller`]), and the actuator follows. A host that
 //! comes back sees it in [`Stats`]: `idle_ticks`, `command_n`, `fault_active`. Only sensor
 //! frames count: `GetStats` and the like do not feed the controller. A lockstep simulation
 //! turns this off with [`Request::SetPacing`]`(`[`Pacing::Lockstep`]`)`: its frames are
@@ -47,7 +47,7 @@ use crate::real::Real;
 
 /// Where the commanded normal force goes.
 pub trait ForceActuator {
-    /// Applies the commanded normal force [N] (finite, within `[N_min, N_max]`).
+    /// Applies the commanded normal force \[N\] (finite, within `[N_min, N_max]`).
     fn set_force_n(&mut self, force_n: f32);
 }
 
@@ -206,7 +206,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
         self.pacing
     }
 
-    /// The tick period of the running configuration [s], `None` before one is accepted.
+    /// The tick period of the running configuration \[s\], `None` before one is accepted.
     pub fn tick_period_s(&self) -> Option<f64> {
         self.controller().map(|c| c.config().tick_period_s)
     }
@@ -214,7 +214,7 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
     /// One tick period passed with no sensor frame: ticks the controller with no
     /// measurement ([`Controller::idle`](crate::controller::Controller::idle)) and drives
     /// `actuator` with the resulting command, which after the stale timeout heads for the
-    /// fault target. Counted in [`Stats::idle_ticks`]. Returns the command [N], or `None`
+    /// fault target. Counted in [`Stats::idle_ticks`]. Returns the command \[N\], or `None`
     /// (and does nothing) before a configuration. Cost: a few comparisons.
     pub fn idle_tick<A: ForceActuator>(&mut self, actuator: &mut A) -> Option<f32> {
         let ctl = self.controller_mut()?;

@@ -30,12 +30,12 @@ pub fn stick_radius<T: Real>(half_width: T, load_ratio: T) -> T {
 pub struct Elasticity<T> {
     /// Poisson's ratio `ν`.
     pub poisson: T,
-    /// Shear modulus `G = E/(2 + 2ν)` [Pa].
+    /// Shear modulus `G = E/(2 + 2ν)` \[Pa\].
     pub shear_modulus_pa: T,
 }
 
 impl<T: Real> Elasticity<T> {
-    /// Validates Young's modulus `E > 0` [Pa] and Poisson's ratio `ν ∈ [0, 0.5]`.
+    /// Validates Young's modulus `E > 0` \[Pa\] and Poisson's ratio `ν ∈ [0, 0.5]`.
     pub fn new(youngs_modulus_pa: f64, poisson: f64) -> Result<Self, ConfigError> {
         check(
             "E",
@@ -56,10 +56,10 @@ impl<T: Real> Elasticity<T> {
     }
 }
 
-/// Tangential deflection `δ` [m] before gross slip (Eq. 5):
+/// Tangential deflection `δ` \[m\] before gross slip (Eq. 5):
 /// `δ = 3μN/(16a) · (2−ν)/G · [1 − (1 − T/(μN))^(2/3)]`.
 ///
-/// `friction_force_n` is `μN` [N], `half_width_m` is `a` [m]. The bracket is evaluated as
+/// `friction_force_n` is `μN` \[N\], `half_width_m` is `a` \[m\]. The bracket is evaluated as
 /// `−expm1(⅔·ln1p(−ratio))`, so it keeps full relative accuracy for tiny ratios. At and above
 /// a ratio of 1 the deflection stays at its gross-slip limit `3μN(2−ν)/(16aG)`.
 pub fn deflection_m<T: Real>(

@@ -49,7 +49,7 @@ pub const GRID_ASPECTS: usize = 16;
 pub struct Setup {
     /// Rectangle (hemicylinder) or disc (hemisphere).
     pub shape: FingerShape,
-    /// Half-length `l` [m] of the rectangle (ignored for the disc).
+    /// Half-length `l` \[m\] of the rectangle (ignored for the disc).
     pub half_length_m: f64,
 }
 
@@ -126,7 +126,7 @@ pub struct FitSummary {
 pub struct Calibration {
     /// `rect` or `disc`.
     pub shape: &'static str,
-    /// Half-length `l` [m] (given, not fitted).
+    /// Half-length `l` \[m\] (given, not fitted).
     pub half_length_m: f64,
     /// Friction coefficient.
     pub mu: Estimate,
@@ -517,7 +517,7 @@ impl Calibration {
         })
     }
 
-    /// The contact half-width `a(N) = c·N^γ` [m] at the calibration's values.
+    /// The contact half-width `a(N) = c·N^γ` \[m\] at the calibration's values.
     pub fn half_width_m(&self, normal_n: f64) -> f64 {
         self.c.value * normal_n.powf(self.gamma.value)
     }

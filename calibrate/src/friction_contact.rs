@@ -66,7 +66,7 @@ pub struct FrictionContact {
     /// JSON).
     #[serde(serialize_with = "value_only")]
     pub joint_c: Estimate,
-    /// The finger's geometric half-length [m].
+    /// The finger's geometric half-length \[m\].
     pub geometric_half_length_m: f64,
 }
 
@@ -88,7 +88,7 @@ fn force_ratios(slip: &[SlipOnset]) -> impl Iterator<Item = f64> + '_ {
         .filter(|x| *x > 0.0 && x.is_finite())
 }
 
-/// The scale `c` [m/N^γ] and the half-length [m] that friction sees: those at which the
+/// The scale `c` [m/N^γ] and the half-length \[m\] that friction sees: those at which the
 /// model's pure-torsion limit `μ·N·a(N)·pitch(k, l/a(N))` matches the `torsion` onsets
 /// on average in `ln m` (`(μ, k, γ)` fixed). First `c`, within [`SCALE_REACH_LN`] of
 /// `c0` at the geometric half-length; when no `c` there matches (a long hemicylinder),

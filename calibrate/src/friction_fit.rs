@@ -40,7 +40,7 @@ pub struct FitPlan {
     pub start: [f64; PARAMS],
     /// Which are fitted.
     pub free: [bool; PARAMS],
-    /// Half-length `l` [m] (the rectangle's aspect `l/a`).
+    /// Half-length `l` \[m\] (the rectangle's aspect `l/a`).
     pub half_length_m: f64,
 }
 

@@ -20,18 +20,18 @@ pub const SLIP_HEADER: &str = "normal_force_n,tangential_force_n,torsional_momen
 /// One indentation measurement.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Indentation {
-    /// Normal force `N` [N].
+    /// Normal force `N` \[N\].
     pub normal_force_n: f64,
-    /// Contact half-width `a` [m].
+    /// Contact half-width `a` \[m\].
     pub half_width_m: f64,
 }
 
 /// One onset of gross slip: the load at which the finger slid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlipOnset {
-    /// Normal force `N` [N].
+    /// Normal force `N` \[N\].
     pub normal_force_n: f64,
-    /// Tangential force `|f_t|` [N] at the onset.
+    /// Tangential force `|f_t|` \[N\] at the onset.
     pub tangential_force_n: f64,
     /// Torsional moment `|m_n|` [N·m] at the onset.
     pub torsional_moment_nm: f64,

@@ -44,7 +44,7 @@ impl Finger {
         Ok(Self { cfg, contact })
     }
 
-    /// The half-width `a(N)` [m].
+    /// The half-width `a(N)` \[m\].
     pub fn a(&self, n: f64) -> f64 {
         self.contact.half_width_m(n)
     }
@@ -251,9 +251,9 @@ impl ExactSurface {
 /// force.
 #[derive(Debug, Clone, Copy)]
 pub struct ExactTick {
-    /// `N_req(s)` [N].
+    /// `N_req(s)` \[N\].
     pub required_n: f64,
-    /// `N_slip` [N].
+    /// `N_slip` \[N\].
     pub n_slip_n: f64,
     /// Utilisation at the measured normal force.
     pub utilisation: f64,

@@ -29,7 +29,7 @@ pub struct FingerFile {
     /// The `[controller]` table (empty when absent).
     #[serde(default)]
     pub controller: ControllerSettings,
-    /// The control rate [Hz] (a scene's; default 1 kHz).
+    /// The control rate \[Hz\] (a scene's; default 1 kHz).
     #[serde(default = "default_tick_hz")]
     pub tick_hz: f64,
     /// The effects a scene lists.

@@ -8,14 +8,14 @@ use std::fmt;
 use std::io::Read;
 use std::path::Path;
 
-/// Largest scene file [bytes] (the shipped scenes are below 2 KiB).
+/// Largest scene file \[bytes\] (the shipped scenes are below 2 KiB).
 pub const SCENE_CAP_BYTES: u64 = 1 << 20;
-/// Largest `--finger` file [bytes] (a scene or a `[finger]` table).
+/// Largest `--finger` file \[bytes\] (a scene or a `[finger]` table).
 pub const FINGER_CAP_BYTES: u64 = 1 << 20;
-/// Largest table blob [bytes] (a blob holds at most 12 × 33 f32 rows and a header: under
+/// Largest table blob \[bytes\] (a blob holds at most 12 × 33 f32 rows and a header: under
 /// 2 KiB).
 pub const BLOB_CAP_BYTES: u64 = 1 << 20;
-/// Largest firmware ELF [bytes] (the debug build with symbols is under 1 MiB).
+/// Largest firmware ELF \[bytes\] (the debug build with symbols is under 1 MiB).
 pub const ELF_CAP_BYTES: u64 = 64 << 20;
 
 /// A file that could not be read, or was larger than its cap.
@@ -93,7 +93,7 @@ pub fn read_capped_text(path: &Path, flag: &str, cap: u64) -> Result<String, Inp
     })
 }
 
-/// Longest text an error message quotes whole [chars].
+/// Longest text an error message quotes whole \[chars\].
 pub const SHORT_CHARS: usize = 48;
 
 /// `s` as an error message quotes it: whole up to [`SHORT_CHARS`] characters, else its

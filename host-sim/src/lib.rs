@@ -7,7 +7,7 @@
 //!   siblings that share only [`args`], [`input`] and [`plot`].
 //! - [`experiment`]: lab experiments on a plant behind the [`experiment::Rig`] trait
 //!   (`host-sim experiment`; `host-sim calibrate` fits their files).
-//! - [`bench`]: every controller on random trials against the oracle (`host-sim bench`),
+//! - [`bench`](mod@bench): every controller on random trials against the oracle (`host-sim bench`),
 //!   on plain options.
 //! - [`accuracy`]: what accuracy costs in time (`host-sim accuracy`), on plain options.
 //! - [`exact`]: the exact f64 limit surface of a configuration's finger and the least force

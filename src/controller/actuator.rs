@@ -46,11 +46,11 @@
 
 use crate::real::Real;
 
-/// Time constant of the filter on the command and the measured force [s].
+/// Time constant of the filter on the command and the measured force \[s\].
 pub const FILTER_TAU_S: f64 = 0.004;
 /// Least filtered rate of the command at which a tick is a sample of the actuator [N/s].
 pub const RATE_MIN_N_PER_S: f64 = 30.0;
-/// Least gap between the filtered command and force on a slew-limited tick [N].
+/// Least gap between the filtered command and force on a slew-limited tick \[N\].
 pub const SLEW_GAP_N: f64 = 0.3;
 /// Ticks in a row that must look slew-limited before they are taken as slew samples.
 pub const SLEW_RUN_TICKS: u8 = 5;
@@ -92,7 +92,7 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
 }
 
 /// The lag assumed of an actuator nobody described (`actuator_lag_s = 0`) until its own
-/// samples say otherwise [s]: what tendon, cable and geared-motor grippers take to follow
+/// samples say otherwise \[s\]: what tendon, cable and geared-motor grippers take to follow
 /// a step of force (tens of milliseconds), at the slow end, since the lead that guess
 /// buys is also all the first rise gets for a slew limit nobody described either.
 /// Without a guess the first lift through a slow actuator nobody described starts unled

@@ -48,7 +48,7 @@ macro_rules! with_schema {
 /// from it, so a new configuration field resizes them by itself (tests/protocol.rs checks
 /// the bound is met and tight on the largest message).
 pub trait WireMaxLen {
-    /// The bound [bytes].
+    /// The bound \[bytes\].
     const WIRE_MAX_LEN: usize;
 }
 
@@ -78,7 +78,7 @@ impl WireMaxLen for Mode {
 
 /// Which fingertip the contact belongs to: the one shape type of the crate and its tools
 /// (the limit surface's [`Shape`] is this plus the aspect ratio, see
-/// [`ControllerConfig::fls_shape`]). Text formats (scene files, the command line) spell it
+/// `ControllerConfig::fls_shape`). Text formats (scene files, the command line) spell it
 /// by [`FingerShape::name`]; the wire (postcard) by its variant index.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -192,7 +192,7 @@ with_schema! {
         pub c_m_per_n_gamma: f64,
         /// `γ ∈ [0, 1/2]` in `a = c·N^γ`.
         pub gamma: f64,
-        /// Half-length `l` of the rectangular patch along the cylinder axis [m] (ignored for
+        /// Half-length `l` of the rectangular patch along the cylinder axis \[m\] (ignored for
         /// the disc).
         pub half_length_m: f64,
         /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
@@ -201,26 +201,26 @@ with_schema! {
         /// by a factor that ramps down to `STEADY_SAFETY_FACTOR` over `STEADY_RAMP_S`,
         /// the product never below 1 (`controller::lead`).
         pub safety: f64,
-        /// Least commanded normal force `N_min > 0` [N].
+        /// Least commanded normal force `N_min > 0` \[N\].
         pub n_min_n: f64,
-        /// Greatest commanded normal force `N_max > N_min` [N].
+        /// Greatest commanded normal force `N_max > N_min` \[N\].
         pub n_max_n: f64,
         /// Fastest rise of the command [N/s].
         pub rise_rate_n_per_s: f64,
         /// Fastest fall of the command [N/s].
         pub fall_rate_n_per_s: f64,
-        /// Time between ticks [s]: the rate limits are applied per tick with this step.
+        /// Time between ticks \[s\]: the rate limits are applied per tick with this step.
         pub tick_period_s: f64,
         /// How long the controller holds its last safe command without a good measurement
-        /// (bad, stale or no frames at all) before it moves to the fault target [s].
+        /// (bad, stale or no frames at all) before it moves to the fault target \[s\].
         pub stale_timeout_s: f64,
         /// The least force to go to once the input has been bad, stale or silent for
-        /// `stale_timeout_s` [N], within `[N_min, N_max]`. The fault target is the greater of
+        /// `stale_timeout_s` \[N\], within `[N_min, N_max]`. The fault target is the greater of
         /// this and the last required force (capped at `N_max`): a dead link never opens the
         /// hand, and this force is the floor when nothing was held.
         pub fault_force_n: f64,
         /// Sensor range for each tangential force component and the measured normal force
-        /// [N]: a reading beyond it is a sensor fault.
+        /// \[N\]: a reading beyond it is a sensor fault.
         pub force_range_n: f64,
         /// Sensor range for the torsional moment [N·m]: a reading beyond it is a sensor fault.
         pub moment_range_nm: f64,
@@ -238,7 +238,7 @@ with_schema! {
         /// Aspect ratios `l/a` in table mode's grid for the rectangle with `γ > 0` (at most
         /// [`MAX_ASPECTS`](super::MAX_ASPECTS); the disc and `γ = 0` need one).
         pub aspect_count: u16,
-        /// Time constant of the actuator that applies the command [s], `0 ≤ τ ≤ 1`: the
+        /// Time constant of the actuator that applies the command \[s\], `0 ≤ τ ≤ 1`: the
         /// prior of the lag the controller identifies online and commands ahead of a
         /// rising load by (see [`lead`](super::lead)). 0 says "not told": the identifier
         /// starts from a 40 ms guess ([`UNTOLD_LAG_S`](super::actuator::UNTOLD_LAG_S)).

@@ -129,14 +129,14 @@
 
 use crate::real::Real;
 
-/// Time constant of each of the two rate filters [s].
+/// Time constant of each of the two rate filters \[s\].
 pub const FILTER_TAU_S: f64 = 0.006;
 /// Rates of `N_req` up to this are taken as sensor noise and get no lead [N/s].
 pub const RATE_DEADBAND_N_PER_S: f64 = 2.0;
 /// The longest lead horizon, in actuator lags.
 pub const HORIZON_MAX_LAGS: f64 = 4.0;
 /// How long after a peak of the requirement its lead stays capped at the window's peak
-/// [s] (covers a period of shakes of 2 Hz and faster).
+/// \[s\] (covers a period of shakes of 2 Hz and faster).
 pub const SWING_WINDOW_S: f64 = 0.5;
 
 /// The factor on the safety factor while the load cycles [-]: see the module's docs,
@@ -154,16 +154,16 @@ pub const CYCLIC_SAFETY_FACTOR: f64 = 1.45;
 pub const STEADY_SAFETY_FACTOR: f64 = 0.85;
 
 /// How long the filtered `N_slip` must stay within a swing's depth of where it settled
-/// before the load counts as steady [s].
+/// before the load counts as steady \[s\].
 pub const STEADY_HOLD_S: f64 = 0.3;
 
-/// How long the steady factor takes to ramp in [s]: once the load counts as steady, the
+/// How long the steady factor takes to ramp in \[s\]: once the load counts as steady, the
 /// factor on the safety factor falls linearly from 1 to [`STEADY_SAFETY_FACTOR`] over
 /// this time (see the module's docs, "Steady loads"). One value, set before any held-out
 /// seed ran and not swept (docs/bench.md, "A steady margin that ramps in").
 pub const STEADY_RAMP_S: f64 = 0.5;
 
-/// The rise of load that ends a steady hold [N], in `N_slip`'s units once divided by
+/// The rise of load that ends a steady hold \[N\], in `N_slip`'s units once divided by
 /// `μ`: half of [`CYCLE_DEPTH_FLOOR_N`], above the filtered sensor noise of a steady hold
 /// (`tests/load_margin.rs`) and below what a lift through a lagging actuator can climb
 /// unseen (`tests/actuator_id.rs`; a quarter of the floor halved that shortfall, no more).
@@ -173,7 +173,7 @@ pub const STEADY_RISE_N: f64 = 0.05;
 /// extreme (the filtered requirement at its top or bottom) [-].
 pub const CYCLE_DEPTH: f64 = 0.1;
 
-/// The part of a swing's depth that does not scale with it, as a tangential load [N]
+/// The part of a swing's depth that does not scale with it, as a tangential load \[N\]
 /// (`÷ μ` in `N_slip`): 2 × the largest sensor noise the bench draws (0.05 N), whose
 /// low-passed `N_slip` then needs an excursion of about 7σ to turn.
 pub const CYCLE_DEPTH_FLOOR_N: f64 = 0.1;

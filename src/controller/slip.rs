@@ -107,21 +107,21 @@ pub const PLAUSIBLE_UTILISATION: f64 = 0.4;
 pub const CREEP_UTILISATION: f64 = 0.7;
 /// The most margin creep alone can ask for.
 pub const CREEP_MARGIN_MAX: f64 = 1.1;
-/// How long an incipient report must persist before it is acted on [s]: a shorter one is
+/// How long an incipient report must persist before it is acted on \[s\]: a shorter one is
 /// taken as sensor noise (a gross report is acted on at once).
 pub const INCIPIENT_CONFIRM_S: f64 = 0.002;
-/// How far back the utilisation at which a reported slip happened is looked for [s]
+/// How far back the utilisation at which a reported slip happened is looked for \[s\]
 /// (between one and two of these): covers a sensor latency of up to this much.
 pub const LOOKBACK_S: f64 = 0.01;
-/// Least time between two steps of the margin while a signal persists [s].
+/// Least time between two steps of the margin while a signal persists \[s\].
 pub const REFRACTORY_S: f64 = 0.02;
-/// Slip-free time before the margin starts to relax [s].
+/// Slip-free time before the margin starts to relax \[s\].
 pub const MARGIN_QUIET_S: f64 = 0.1;
-/// Time constant of the margin's relaxation [s].
+/// Time constant of the margin's relaxation \[s\].
 pub const MARGIN_RELAX_TAU_S: f64 = 0.2;
-/// Slip-free time before the estimate `μ̂` starts to relax [s].
+/// Slip-free time before the estimate `μ̂` starts to relax \[s\].
 pub const QUIET_S: f64 = 1.0;
-/// Time constant of the estimate's relaxation [s].
+/// Time constant of the estimate's relaxation \[s\].
 pub const RELAX_TAU_S: f64 = 5.0;
 
 /// The controller's belief about friction and its margin, and how slip changes them.

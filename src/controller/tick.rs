@@ -36,13 +36,13 @@ impl core::error::Error for FromTablesError {}
 /// One sensor reading. Any value is accepted; the tick decides what is usable.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Measurement<T> {
-    /// Tangential force in the contact plane, two components [N].
+    /// Tangential force in the contact plane, two components \[N\].
     pub tangential_force_n: [T; 2],
     /// Torsional moment about the contact normal [N·m].
     pub torsional_moment_nm: T,
-    /// Measured normal force [N] (the grip the contact has now).
+    /// Measured normal force \[N\] (the grip the contact has now).
     pub normal_force_n: T,
-    /// When the reading was taken [µs], on the sensor's clock. Must increase.
+    /// When the reading was taken \[µs\], on the sensor's clock. Must increase.
     pub timestamp_us: u64,
     /// What a tactile slip sensor saw ([`SlipSignal::None`] without one).
     pub slip: SlipSignal,
@@ -51,12 +51,12 @@ pub struct Measurement<T> {
 /// What one tick decided. Every number is finite, always.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TickOutput<T> {
-    /// The commanded normal force [N], in `[N_min, N_max]`.
+    /// The commanded normal force \[N\], in `[N_min, N_max]`.
     pub command_n: T,
-    /// `N_req(s)`: the least force that holds the load with the safety margin [N] (may lie
+    /// `N_req(s)`: the least force that holds the load with the safety margin \[N\] (may lie
     /// outside `[N_min, N_max]`: see [`Capacity`] for how it is extended there).
     pub required_n: T,
-    /// `N_slip = N_req(1)`: the force at which this load would just start to slip [N].
+    /// `N_slip = N_req(1)`: the force at which this load would just start to slip \[N\].
     pub n_slip_n: T,
     /// How far the load is along its way to the limit surface of the contact at the
     /// measured normal force: `< 1` holds, `≥ 1` slips. In `[0, UTILISATION_MAX]`.
@@ -122,7 +122,7 @@ pub const RESYNC_FRAMES: u8 = 3;
 /// of any length are taken at once. Anything else (a repeat, an
 /// older frame, a jump into the far future such as `u64::MAX`) is refused as
 /// `StaleInput`, counted ([`Controller::time_rejections`]), and leaves the anchor where it
-/// was: one bad timestamp costs exactly one frame. When [`RESYNC_FRAMES`] refused frames
+/// was: one bad timestamp costs exactly one frame. When `RESYNC_FRAMES` (3) refused frames
 /// in a row each follow the one before by a plausible step, the sensor's clock has really
 /// moved (a restart, a long silence): the last of them is accepted and becomes the new
 /// anchor.
@@ -174,7 +174,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         &self.capacity
     }
 
-    /// The present command [N].
+    /// The present command \[N\].
     pub fn command_n(&self) -> T {
         self.command
     }
@@ -301,7 +301,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.slip_response.mu_estimate()
     }
 
-    /// The actuator's lag the controller has identified [s] (0: ideal, or none seen yet;
+    /// The actuator's lag the controller has identified \[s\] (0: ideal, or none seen yet;
     /// see [`actuator`](super::actuator)).
     pub fn actuator_lag_estimate_s(&self) -> T {
         self.actuator.lag_s()
@@ -357,7 +357,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.bad_ticks >= self.stale_ticks
     }
 
-    /// Where the command goes once the fault is active [N]: `fault_force_n`, or the last
+    /// Where the command goes once the fault is active \[N\]: `fault_force_n`, or the last
     /// good tick's required force `N_req` (capped at `N_max`) when that is greater, so a
     /// fault never lowers the grip below what the last known load needed.
     pub fn fault_target_n(&self) -> T {

@@ -16,7 +16,7 @@ pub struct PwmForce<P> {
 }
 
 impl<P: SetDutyCycle> PwmForce<P> {
-    /// Wraps a PWM channel whose full duty gives `full_scale_n` [N] (`> 0`; a non-positive
+    /// Wraps a PWM channel whose full duty gives `full_scale_n` \[N\] (`> 0`; a non-positive
     /// or non-finite value is read as 1 N).
     pub fn new(pwm: P, full_scale_n: f32) -> Self {
         let full_scale_n = if full_scale_n > 0.0 && full_scale_n.is_finite() {

@@ -19,7 +19,7 @@ pub struct Method {
     pub setting: usize,
     /// Worst error in `f̃` or `m̃` against the converged core.
     pub err: f64,
-    /// Time per point [µs] (median).
+    /// Time per point \[µs\] (median).
     pub us: f64,
 }
 

@@ -24,7 +24,7 @@ pub struct AspectGridRow {
     pub pitch_err: f64,
     /// Largest relative radial error of the interpolated surface.
     pub surface_err: f64,
-    /// Build time [µs] (median).
+    /// Build time \[µs\] (median).
     pub build_us: f64,
 }
 

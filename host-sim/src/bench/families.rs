@@ -40,9 +40,9 @@ use std::sync::Arc;
 /// The families `--family all` runs, in order.
 pub const NAMES: [&str; 5] = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"];
 
-/// The least command of every trial [N] (softgrip's default).
+/// The least command of every trial \[N\] (softgrip's default).
 pub const N_MIN_N: f64 = 0.2;
-/// The greatest command of every trial [N] (softgrip's default).
+/// The greatest command of every trial \[N\] (softgrip's default).
 pub const N_MAX_N: f64 = 20.0;
 
 /// The ranges the families draw from, and what the controllers are told.

@@ -36,7 +36,7 @@ use softgrip_calibrate::surface::SurfaceGrid;
 use softgrip_calibrate::Setup;
 use std::sync::OnceLock;
 
-/// The lab's normal forces [N].
+/// The lab's normal forces \[N\].
 pub const LAB_FORCES_N: [f64; 6] = [0.5, 1.0, 2.0, 4.0, 8.0, 16.0];
 /// Relative noise (standard deviation) on every recorded value.
 pub const LAB_NOISE: f64 = 0.02;
@@ -56,12 +56,12 @@ pub struct Beliefs {
     pub c: f64,
     /// softgrip's `γ`.
     pub gamma: f64,
-    /// softgrip's half-length [m]: the geometric one, or the one friction sees when the
+    /// softgrip's half-length \[m\]: the geometric one, or the one friction sees when the
     /// torsion onsets call for it ([`softgrip_calibrate::friction_contact`]).
     pub half_length_m: f64,
     /// The cone's, the box's and fixed-torsion's `μ` (slip test).
     pub cone_mu: f64,
-    /// The box's and fixed-torsion's torsion arm [m] (torsion test).
+    /// The box's and fixed-torsion's torsion arm \[m\] (torsion test).
     pub torsion_arm_m: f64,
 }
 
@@ -110,7 +110,7 @@ fn geometric_mean(xs: impl Iterator<Item = f64>) -> Option<f64> {
 }
 
 /// Every controller's beliefs from `lab`, for a finger of `shape` and half-length
-/// `half_length_m` [m] (its geometry, which a lab knows); or why the data do not fit.
+/// `half_length_m` \[m\] (its geometry, which a lab knows); or why the data do not fit.
 pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Result<Beliefs, String> {
     let setup = Setup {
         shape,
@@ -160,7 +160,7 @@ pub fn calibrate(lab: &LabData, shape: FingerShape, half_length_m: f64) -> Resul
 }
 
 /// Whether the aspects `l/a(N)` of a finger of `shape` and half-length `half_length_m`
-/// [m] with the contact law `a = c·N^γ` lie inside the shared grid at every lab force
+/// \[m\] with the contact law `a = c·N^γ` lie inside the shared grid at every lab force
 /// (always for a disc, whose surface has no aspect).
 pub fn inside_shared_grid(shape: FingerShape, half_length_m: f64, c: f64, gamma: f64) -> bool {
     if shape == FingerShape::Disc {

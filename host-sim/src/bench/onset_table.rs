@@ -36,7 +36,7 @@ pub struct OnsetTable {
 const NO_SLIP_RHO: f64 = 3.0;
 
 impl OnsetTable {
-    /// Tabulates `rig` over `[n_lo_n, n_hi_n]` [N]; an error when a pure-force or
+    /// Tabulates `rig` over `[n_lo_n, n_hi_n]` \[N\]; an error when a pure-force or
     /// pure-torsion ramp never slips.
     pub fn build(rig: &dyn Rig, n_lo_n: f64, n_hi_n: f64) -> Result<Self, String> {
         let mut t = Self {

@@ -17,8 +17,8 @@ use crate::sim::truth::Truth;
 
 /// A plant's true limit: whether a load holds at a normal force.
 pub trait TrueLimit {
-    /// Whether the load `(ft_n, mn_nm)` (one contact's, [N] and [N·m]) holds at normal
-    /// force `n_n` [N].
+    /// Whether the load `(ft_n, mn_nm)` (one contact's, \[N\] and [N·m]) holds at normal
+    /// force `n_n` \[N\].
     fn holds(&self, ft_n: f64, mn_nm: f64, n_n: f64) -> bool;
 }
 
@@ -40,9 +40,9 @@ impl TrueLimit for OnsetTable {
 /// which holds).
 pub const REL_TOL: f64 = 1e-6;
 
-/// The least force in `[n_min_n, n_max_n]` [N] at which the true load `(ft_n, mn_nm)`
-/// (per contact, [N] and [N·m]) has a true utilisation of at most 1; `n_max_n` when none.
-/// `guess` [N] (the previous tick's answer) only speeds the search: it is bracketed
+/// The least force in `[n_min_n, n_max_n]` \[N\] at which the true load `(ft_n, mn_nm)`
+/// (per contact, \[N\] and [N·m]) has a true utilisation of at most 1; `n_max_n` when none.
+/// `guess` \[N\] (the previous tick's answer) only speeds the search: it is bracketed
 /// within ±5 % of it when it can be, then bisected to [`REL_TOL`].
 pub fn least_holding_force_n(
     truth: &dyn TrueLimit,
@@ -87,7 +87,7 @@ pub fn least_holding_force_n(
     hi
 }
 
-/// The oracle's time-averaged force over a scene [N] (the mean of the per-tick least
+/// The oracle's time-averaged force over a scene \[N\] (the mean of the per-tick least
 /// holding forces), with the scene's force limits `[n_min_n, n_max_n]`.
 pub fn mean_oracle_force_n(
     scene: &Scene,

@@ -16,7 +16,7 @@ const SIZE: (u32, u32) = (1500, 650);
 const ZOOM_DROP_PCT: f64 = 12.0;
 
 /// The SVG text of the Pareto plot of `family`'s rows: every setting on the left, the
-/// settings that drop at most [`ZOOM_DROP_PCT`] % on the right, on linear axes.
+/// settings that drop at most `ZOOM_DROP_PCT` (12) % on the right, on linear axes.
 pub fn pareto_svg(family: &str, rows: &[Row]) -> Result<String, String> {
     let mut svg = String::new();
     {

@@ -13,7 +13,7 @@ use std::path::Path;
 /// hand's limit ([`AT_LIMIT_FRACTION`](super::stats::AT_LIMIT_FRACTION); `-` without a
 /// `constant` sweep), the holdable drops that were turns rather than slides
 /// ([`lost_by_turning`](super::stats::lost_by_turning)), the drop rate with its Wilson
-/// 95 % interval [%], force over oracle [-], mean force [N], mean slip [mm].
+/// 95 % interval [%], force over oracle [-], mean force \[N\], mean slip \[mm\].
 pub fn family_table(family: &str, rows: &[Row]) -> String {
     let mut s = String::new();
     let (trials, holdable) = rows.first().map_or((0, 0), |r| (r.trials, r.holdable));
@@ -137,8 +137,8 @@ pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
 
 /// Writes `trials-FAMILY.csv`: one line per seed, trial, controller and knob value, with
 /// the trial's true μ [-] and its ratio to the measured one [-], whether it lists the
-/// slip sensor, whether it is holdable and its oracle force [N], then the run's drop,
-/// slip events, slip distance [m], mean and peak force [N].
+/// slip sensor, whether it is holdable and its oracle force \[N\], then the run's drop,
+/// slip events, slip distance \[m\], mean and peak force \[N\].
 pub fn write_trials_csv(
     path: &Path,
     sweeps: &[Sweep],

@@ -20,7 +20,7 @@ pub struct Row {
     pub controller: String,
     /// The knob's name.
     pub knob: String,
-    /// The knob's value (safety factor [-], force [N] or floor force [N]).
+    /// The knob's value (safety factor [-], force \[N\] or floor force \[N\]).
     pub knob_value: f64,
     /// Whether this is the controller's default.
     pub default: bool,
@@ -49,11 +49,11 @@ pub struct Row {
     pub drop_rate_ci95: [f64; 2],
     /// Mean over trials of (time-averaged force / oracle's time-averaged force) [-].
     pub force_over_oracle: f64,
-    /// Mean over trials of the time-averaged normal force [N].
+    /// Mean over trials of the time-averaged normal force \[N\].
     pub mean_force_n: f64,
-    /// Mean over trials of the peak normal force [N].
+    /// Mean over trials of the peak normal force \[N\].
     pub peak_force_n: f64,
-    /// Mean over trials of the slip distance [m].
+    /// Mean over trials of the slip distance \[m\].
     pub slip_distance_m: f64,
     /// Mean over trials of the slip episodes.
     pub slip_events: f64,
@@ -103,7 +103,7 @@ fn at_limit_on(grid: &[(usize, f64)], r: &TrialResult, n_max_n: f64) -> bool {
 }
 
 /// Whether trial `r` is holdable and at the hand's limit ([`AT_LIMIT_FRACTION`]) for a
-/// hand of `n_max_n` [N], judged by the `constant` sweep of `sweeps`; `None` when there is
+/// hand of `n_max_n` \[N\], judged by the `constant` sweep of `sweeps`; `None` when there is
 /// none.
 pub fn at_limit(sweeps: &[Sweep], r: &TrialResult, n_max_n: f64) -> Option<bool> {
     let grid = constant_grid(sweeps);

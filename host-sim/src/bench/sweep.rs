@@ -30,7 +30,7 @@ const DEFAULT_SAFETY: f64 = ControllerConfig::DEFAULT.safety;
 /// Each baseline's default, chosen as softgrip's is: by the same rule
 /// ([`super::default_choice::baseline_choices`], safety first on the front), over that
 /// baseline's own knob, on the same held-out run (docs/bench/heldout/; checked by
-/// `host-sim/tests/default_choice.rs`). `constant`'s force [N].
+/// `host-sim/tests/default_choice.rs`). `constant`'s force \[N\].
 pub const CONSTANT_DEFAULT_N: f64 = 20.0;
 /// `coulomb`'s default safety factor (held-out choice, as [`CONSTANT_DEFAULT_N`]).
 pub const COULOMB_DEFAULT_SAFETY: f64 = 3.0;
@@ -39,7 +39,7 @@ pub const BOX_DEFAULT_SAFETY: f64 = 3.0;
 /// `fixed-torsion`'s default safety factor (held-out choice, as
 /// [`CONSTANT_DEFAULT_N`]).
 pub const FIXED_TORSION_DEFAULT_SAFETY: f64 = 2.5;
-/// `slip-servo`'s default floor [N] (held-out choice, as [`CONSTANT_DEFAULT_N`]).
+/// `slip-servo`'s default floor \[N\] (held-out choice, as [`CONSTANT_DEFAULT_N`]).
 pub const SLIP_SERVO_DEFAULT_N: f64 = 4.0;
 /// The margin of common practice, 1.3, at which the model-based baselines ran by default
 /// before their defaults were chosen by the rule; the bench reports softgrip's default
@@ -122,11 +122,11 @@ pub struct RunRow {
     pub dropped: bool,
     /// Slip episodes.
     pub slip_events: u64,
-    /// Slip distance [m].
+    /// Slip distance \[m\].
     pub slip_distance_m: f64,
-    /// Time-averaged normal force [N].
+    /// Time-averaged normal force \[N\].
     pub mean_force_n: f64,
-    /// Peak normal force [N].
+    /// Peak normal force \[N\].
     pub peak_force_n: f64,
 }
 
@@ -142,7 +142,7 @@ pub struct TrialResult {
     pub sensor: bool,
     /// Whether `constant` at the scene's `N_max` holds it.
     pub holdable: bool,
-    /// The oracle's time-averaged force [N].
+    /// The oracle's time-averaged force \[N\].
     pub oracle_mean_n: f64,
     /// One row per (sweep, value), in [`SWEEPS`] order.
     pub runs: Vec<RunRow>,

@@ -85,9 +85,9 @@ pub enum TrialFinger {
         shape: FingerShape,
         /// Static μ.
         mu: f64,
-        /// Half-length `l` [m].
+        /// Half-length `l` \[m\].
         half_length_m: f64,
-        /// Young's modulus [Pa].
+        /// Young's modulus \[Pa\].
         young_modulus_pa: f64,
         /// The brush's own keys.
         brush: BrushSettings,
@@ -118,7 +118,7 @@ impl TrialFinger {
         }
     }
 
-    /// The half-length `l` [m] (the finger's geometry, which every controller is told).
+    /// The half-length `l` \[m\] (the finger's geometry, which every controller is told).
     pub fn half_length_m(&self) -> f64 {
         match self {
             TrialFinger::Brush { half_length_m, .. } => *half_length_m,
@@ -172,7 +172,7 @@ impl TrialFinger {
     }
 
     /// The rig the lab measures and the oracle asks: the brush finger, or the exact
-    /// surface over `[n_lo, n_hi]` [N].
+    /// surface over `[n_lo, n_hi]` \[N\].
     pub fn rig(&self, n_lo: f64, n_hi: f64) -> Result<Box<dyn Rig + Send + Sync>, String> {
         match self {
             TrialFinger::Fls(spec) => FlsRig::new(*spec, n_lo, n_hi)

@@ -21,18 +21,18 @@ use super::geometry::Patch;
 /// The object's pose relative to the finger.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Pose {
-    /// Translation along the axis [m].
+    /// Translation along the axis \[m\].
     pub ux_m: f64,
-    /// Translation across the axis [m].
+    /// Translation across the axis \[m\].
     pub uy_m: f64,
-    /// Rotation about the contact normal [rad].
+    /// Rotation about the contact normal \[rad\].
     pub theta_rad: f64,
 }
 
 /// What the bristles transmit to the object (one contact).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BristleWrench {
-    /// Tangential force on the object [N]: `(x, y)`.
+    /// Tangential force on the object \[N\]: `(x, y)`.
     pub f_t_n: [f64; 2],
     /// Moment on the object about the contact normal at the patch centre [N·m].
     pub m_n_nm: f64,
@@ -48,9 +48,9 @@ pub struct BristleWrench {
     pub stuck_stiffness_n_per_m: f64,
     /// Torsional stiffness of the stuck bristles [N·m/rad].
     pub stuck_torsion_nm_per_rad: f64,
-    /// First moments of the stuck bristles' stiffness `(Σ k_t A x, Σ k_t A y)` [N].
+    /// First moments of the stuck bristles' stiffness `(Σ k_t A x, Σ k_t A y)` \[N\].
     pub stuck_moment_n: [f64; 2],
-    /// Elastic energy stored in the bristles [J].
+    /// Elastic energy stored in the bristles \[J\].
     pub energy_j: f64,
     /// The consistent tangent stiffness `K` (`dW ≈ −K·dq` for a pose change `dq`, from the
     /// same committed anchors), upper triangle `[K11, K12, K13, K22, K23, K33]`: stuck

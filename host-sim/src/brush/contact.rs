@@ -108,7 +108,7 @@ impl Contact {
         self.bristles.relax(&self.patch, q);
     }
 
-    /// Every element's pressure [Pa].
+    /// Every element's pressure \[Pa\].
     pub fn pressure_pa(&self) -> &[f64] {
         &self.pressure_pa
     }
@@ -118,17 +118,17 @@ impl Contact {
         self.indentation
     }
 
-    /// The normal force carried [N].
+    /// The normal force carried \[N\].
     pub fn normal_n(&self) -> f64 {
         self.normal_n
     }
 
-    /// Half the contact's extent across the axis [m].
+    /// Half the contact's extent across the axis \[m\].
     pub fn half_width_m(&self) -> f64 {
         0.5 * (self.extent_m.1 - self.extent_m.0)
     }
 
-    /// The pressure centre across the axis, `Σ p A y / Σ p A` [m] (0 unloaded).
+    /// The pressure centre across the axis, `Σ p A y / Σ p A` \[m\] (0 unloaded).
     pub fn pressure_centre_y_m(&self) -> f64 {
         let (mut f, mut m) = (0.0, 0.0);
         for (p, y) in self.pressure_pa.iter().zip(&self.patch.y_m) {
@@ -154,7 +154,7 @@ impl Contact {
     }
 
     /// The full-slip limits at the present pressure, brute-force sums over the elements:
-    /// pure translation `Σ μ_s p A` [N] and pure torsion about the patch centre
+    /// pure translation `Σ μ_s p A` \[N\] and pure torsion about the patch centre
     /// `Σ μ_s p A r` [N·m].
     pub fn full_slip_limits(&self) -> (f64, f64) {
         let a = self.patch.area_m2;

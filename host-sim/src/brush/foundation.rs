@@ -1,6 +1,6 @@
 //! Normal pressure: an elastic (Winkler) foundation, each element pressed independently,
 //! `p = K·max(0, s)^n` with the penetration `s = δ + β·y − gap`: the indentation `δ` of the
-//! finger and a small tilt `β` [rad] of the foundation about the axis. `K = E/h^n`
+//! finger and a small tilt `β` \[rad\] of the foundation about the axis. `K = E/h^n`
 //! ([`BrushParams::foundation_modulus`](super::params::BrushParams::foundation_modulus)).
 //!
 //! [`Foundation::solve`] finds `(δ, β)` such that `Σ p·A = N` and `Σ p·A·y = M_y`, the
@@ -38,9 +38,9 @@ pub struct Foundation {
 /// The finger's indentation and tilt.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Indentation {
-    /// Indentation `δ` at `y = 0` [m].
+    /// Indentation `δ` at `y = 0` \[m\].
     pub delta_m: f64,
-    /// Tilt about the axis [rad] (penetration grows by `β·y`).
+    /// Tilt about the axis \[rad\] (penetration grows by `β·y`).
     pub beta_rad: f64,
 }
 
@@ -52,7 +52,7 @@ struct Sums {
 }
 
 impl Foundation {
-    /// Pressure at penetration `s` [Pa].
+    /// Pressure at penetration `s` \[Pa\].
     #[inline]
     pub fn pressure_pa(&self, s_m: f64) -> f64 {
         if s_m <= 0.0 {
@@ -89,7 +89,7 @@ impl Foundation {
         s
     }
 
-    /// Total force `Σ p A` at `ind` [N].
+    /// Total force `Σ p A` at `ind` \[N\].
     pub fn force_n(&self, patch: &Patch, ind: Indentation) -> f64 {
         self.sums(patch, ind).f[0]
     }
@@ -131,7 +131,7 @@ impl Foundation {
         0.5 * (lo + hi)
     }
 
-    /// The untilted indentation carrying `normal_n` [m] (bisection).
+    /// The untilted indentation carrying `normal_n` \[m\] (bisection).
     pub fn untilted(&self, patch: &Patch, normal_n: f64) -> Indentation {
         if !(normal_n > 0.0 && normal_n.is_finite()) {
             return Indentation::default();
@@ -241,7 +241,7 @@ impl Foundation {
         }
     }
 
-    /// The contact's extent across the axis, `(y_min, y_max)` [m]: the outermost loaded
+    /// The contact's extent across the axis, `(y_min, y_max)` \[m\]: the outermost loaded
     /// rows of elements, refined by linear interpolation of the penetration towards their
     /// first unloaded neighbour row (so it moves continuously with the load); a loaded
     /// row at the mesh's edge counts half an element beyond its centre. `(0, 0)` unloaded.

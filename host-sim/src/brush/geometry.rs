@@ -17,25 +17,25 @@ use super::params::{BrushParams, BrushShape};
 /// The elements of the patch, in structure-of-arrays form.
 #[derive(Debug, Clone)]
 pub struct Patch {
-    /// Element centres along the axis [m].
+    /// Element centres along the axis \[m\].
     pub x_m: Vec<f64>,
-    /// Element centres across the axis [m].
+    /// Element centres across the axis \[m\].
     pub y_m: Vec<f64>,
-    /// Undeformed gap to the finger surface [m] (`+∞` where the finger is absent).
+    /// Undeformed gap to the finger surface \[m\] (`+∞` where the finger is absent).
     pub gap_m: Vec<f64>,
     /// Static friction coefficient of each element [-].
     pub mu_static: Vec<f64>,
     /// Kinetic friction coefficient of each element [-].
     pub mu_kinetic: Vec<f64>,
-    /// Element area [m²].
+    /// Element area \[m²\].
     pub area_m2: f64,
-    /// Element side across the axis [m].
+    /// Element side across the axis \[m\].
     pub dy_m: f64,
-    /// Half-extent of the mesh across the axis [m].
+    /// Half-extent of the mesh across the axis \[m\].
     pub half_width_m: f64,
-    /// Each row's centre across the axis [m], ascending (a row: the elements of one `y`).
+    /// Each row's centre across the axis \[m\], ascending (a row: the elements of one `y`).
     pub row_y_m: Vec<f64>,
-    /// Each row's least gap [m].
+    /// Each row's least gap \[m\].
     pub row_gap_m: Vec<f64>,
 }
 
@@ -101,7 +101,7 @@ impl Patch {
         self.x_m.is_empty()
     }
 
-    /// The least gap [m] (where the finger first touches).
+    /// The least gap \[m\] (where the finger first touches).
     pub fn min_gap_m(&self) -> f64 {
         self.gap_m.iter().copied().fold(f64::INFINITY, f64::min)
     }

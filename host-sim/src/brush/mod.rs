@@ -79,7 +79,7 @@ impl BrushFinger {
         Contact::new(&self.params, Arc::clone(&self.patch))
     }
 
-    /// A fresh grasp of an object of `mass_kg` [kg] and `inertia_kg_m2` [kg·m²].
+    /// A fresh grasp of an object of `mass_kg` \[kg\] and `inertia_kg_m2` [kg·m²].
     pub fn plant(&self, mass_kg: f64, inertia_kg_m2: f64) -> BrushPlant {
         BrushPlant {
             contact: self.contact(),
@@ -96,7 +96,7 @@ impl BrushFinger {
     }
 
     /// Quasi-static indentation: the contact half-width across the cylinder axis (y) at
-    /// normal force `normal_n` [m] (no tangential load, so no tilt). It saturates at the
+    /// normal force `normal_n` \[m\] (no tangential load, so no tilt). It saturates at the
     /// mesh's half-extent ([`BrushParams::mesh_half_width_m`]); 0 for a force that is not
     /// positive and finite.
     pub fn indentation_half_width_m(&self, normal_n: f64) -> f64 {
@@ -105,7 +105,7 @@ impl BrushFinger {
         c.half_width_m()
     }
 
-    /// The indentation `δ` at normal force `normal_n` without tangential load [m].
+    /// The indentation `δ` at normal force `normal_n` without tangential load \[m\].
     pub fn indentation_m(&self, normal_n: f64) -> f64 {
         let mut c = self.contact();
         c.press(normal_n, 0.0);
@@ -114,7 +114,7 @@ impl BrushFinger {
 
     /// At normal force `normal_n`, ramps the load λ·(ft_unit_n along y, mn_unit_nm about
     /// z) quasi-statically from λ = 0 (fresh bristles) until gross slip; returns λ at the
-    /// onset times the units, (f_t [N], m_n [N·m]), or None if it never slips within the
+    /// onset times the units, (f_t \[N\], m_n [N·m]), or None if it never slips within the
     /// bound `λ = 3·λ*` ([`onset`] defines the onset and `λ*`; also `None` for a force or
     /// unit that is not finite, or zero units).
     pub fn slip_onset(&self, normal_n: f64, ft_unit_n: f64, mn_unit_nm: f64) -> Option<(f64, f64)> {
@@ -134,25 +134,25 @@ impl BrushFinger {
 /// What the plant reports after a step (one contact's wrench; the pinch has two).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PlantReport {
-    /// Tangential force one contact applies to the object [N]: `(x, y)`.
+    /// Tangential force one contact applies to the object \[N\]: `(x, y)`.
     pub f_t_n: [f64; 2],
     /// Moment one contact applies to the object about the contact normal [N·m].
     pub m_n_nm: f64,
-    /// Normal force of each fingertip [N].
+    /// Normal force of each fingertip \[N\].
     pub normal_n: f64,
-    /// Contact half-width across the axis [m].
+    /// Contact half-width across the axis \[m\].
     pub half_width_m: f64,
-    /// Pressure centre across the axis [m].
+    /// Pressure centre across the axis \[m\].
     pub pressure_centre_y_m: f64,
     /// Fraction of the loaded elements that stuck (1 with nothing loaded).
     pub stuck_fraction: f64,
     /// Whether the contact slid grossly: no loaded element stuck while the object moved.
     pub gross_slip: bool,
-    /// How far the grip has slipped, `|(u_x, u_y)|` [m]: the object's translation
+    /// How far the grip has slipped, `|(u_x, u_y)|` \[m\]: the object's translation
     /// relative to the fingertips less the soft layer's elastic stretch
     /// ([`bristles::Bristles::slip_pose`]).
     pub slip_distance_m: f64,
-    /// How far the grip has turned by slipping [rad] (the object's rotation less the
+    /// How far the grip has turned by slipping \[rad\] (the object's rotation less the
     /// layer's elastic twist).
     pub slip_rotation_rad: f64,
     /// Sub-steps taken.
@@ -178,8 +178,8 @@ fn finite_or_zero(v: f64) -> f64 {
 }
 
 impl BrushPlant {
-    /// Advances by `dt_s` [s] with each fingertip pressing `normal_n` [N] while the grasp
-    /// must apply `grasp_force_n` [N] and `grasp_moment_nm` [N·m] to the object (the
+    /// Advances by `dt_s` \[s\] with each fingertip pressing `normal_n` \[N\] while the grasp
+    /// must apply `grasp_force_n` \[N\] and `grasp_moment_nm` [N·m] to the object (the
     /// run loop's `World::force_n`/`moment_nm`: the load on the object is minus that).
     /// Non-finite inputs count as zero (a non-finite or non-positive `dt_s` steps nothing).
     pub fn step(

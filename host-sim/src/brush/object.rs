@@ -22,7 +22,7 @@ pub const MAX_SUBSTEPS: usize = 256;
 /// The object's inertia and its state relative to the fingertips.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Object {
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass_kg: f64,
     /// Moment of inertia about the grasp axis [kg·m²].
     pub inertia_kg_m2: f64,
@@ -39,7 +39,7 @@ pub struct Object {
 pub struct StepOutcome {
     /// The bristles' state at the last sub-step.
     pub bristles: BristleWrench,
-    /// One contact's tangential force on the object, damping included [N].
+    /// One contact's tangential force on the object, damping included \[N\].
     pub f_t_n: [f64; 2],
     /// One contact's moment on the object, damping included [N·m].
     pub m_n_nm: f64,

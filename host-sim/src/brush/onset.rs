@@ -38,7 +38,7 @@ pub const TOLERANCE: f64 = 1e-7;
 pub const STEPS: usize = 100;
 /// Bisections refining the onset.
 pub const REFINE: usize = 30;
-/// Largest translation, as a multiple of the patch's half-extent, and rotation [rad] of an
+/// Largest translation, as a multiple of the patch's half-extent, and rotation \[rad\] of an
 /// equilibrium: a guard against numerical blow-up only, far beyond any displacement an
 /// equilibrium needs (a full-slip stretch is `μ·p/k_t`, well under the patch's size; in
 /// pure torsion the last stuck elements are the ones nearest the centre, so the rotation

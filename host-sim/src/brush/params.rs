@@ -20,9 +20,9 @@ pub enum BrushShape {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BrushSettings {
-    /// Radius `R` of the finger's rigid core plus layer [m], in (0, 1]; default 0.01.
+    /// Radius `R` of the finger's rigid core plus layer \[m\], in (0, 1]; default 0.01.
     pub radius_m: f64,
-    /// Thickness `h` of the soft layer [m], in (0, R]; default 0.003.
+    /// Thickness `h` of the soft layer \[m\], in (0, R]; default 0.003.
     pub layer_thickness_m: f64,
     /// Stiffening exponent `n` of the foundation `p = K·s^n`, in [1, 4]; default 1.
     pub stiffening_exponent: f64,
@@ -32,11 +32,11 @@ pub struct BrushSettings {
     /// `μ(y) = μ·max(0, 1 + g·y)`, in [-1e4, 1e4]; default 0.
     pub mu_gradient_per_m: f64,
     /// Height `H` above the contact at which the tangential force acts on the finger
-    /// [m], in [0, 1]; default `R`.
+    /// \[m\], in [0, 1]; default `R`.
     pub height_m: Option<f64>,
     /// Elements per side of the patch grid, in [4, 200]; default 24.
     pub elements: usize,
-    /// Half-extent of the meshed patch across the axis [m], in (0, R]; default the
+    /// Half-extent of the meshed patch across the axis \[m\], in (0, R]; default the
     /// contact half-width at indentation `h/2`, `sqrt(R·h − h²/4)`.
     pub mesh_half_width_m: Option<f64>,
     /// Damping ratio of the stuck bristles with the object, in [0, 2]; default 0.3.
@@ -64,15 +64,15 @@ impl Default for BrushSettings {
 pub struct BrushParams {
     /// Geometry.
     pub shape: BrushShape,
-    /// Radius `R` [m].
+    /// Radius `R` \[m\].
     pub radius_m: f64,
-    /// Half-length `L` of the hemicylinder along its axis [m] (unused by the hemisphere).
+    /// Half-length `L` of the hemicylinder along its axis \[m\] (unused by the hemisphere).
     pub half_length_m: f64,
-    /// Young's modulus `E` of the soft layer [Pa].
+    /// Young's modulus `E` of the soft layer \[Pa\].
     pub young_modulus_pa: f64,
     /// Poisson's ratio `ν` of the layer [-].
     pub poisson: f64,
-    /// Layer thickness `h` [m].
+    /// Layer thickness `h` \[m\].
     pub layer_thickness_m: f64,
     /// Stiffening exponent `n ≥ 1` [-].
     pub stiffening_exponent: f64,
@@ -82,11 +82,11 @@ pub struct BrushParams {
     pub mu_kinetic: f64,
     /// Friction gradient across the axis [1/m].
     pub mu_gradient_per_m: f64,
-    /// Height `H` at which the tangential force acts [m].
+    /// Height `H` at which the tangential force acts \[m\].
     pub height_m: f64,
     /// Elements per side.
     pub elements: usize,
-    /// Half-extent of the mesh across the axis [m].
+    /// Half-extent of the mesh across the axis \[m\].
     pub mesh_half_width_m: f64,
     /// Damping ratio of the stuck bristles [-].
     pub damping_ratio: f64,
@@ -198,7 +198,7 @@ impl BrushParams {
         self.young_modulus_pa / self.layer_thickness_m.powf(self.stiffening_exponent)
     }
 
-    /// Shear modulus `G = E/(2(1+ν))` [Pa].
+    /// Shear modulus `G = E/(2(1+ν))` \[Pa\].
     pub fn shear_modulus_pa(&self) -> f64 {
         self.young_modulus_pa / (2.0 * (1.0 + self.poisson))
     }

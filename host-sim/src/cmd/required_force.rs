@@ -125,22 +125,22 @@ impl RequiredForceArgs {
 /// The answer, as `--format json` prints it.
 #[derive(Debug, Serialize)]
 pub struct RequiredForce {
-    /// `N_req(s)` [N].
+    /// `N_req(s)` \[N\].
     pub normal_force: f64,
-    /// `N_slip = N_req(1)` [N].
+    /// `N_slip = N_req(1)` \[N\].
     pub n_slip: f64,
     /// The safety factor `s` of `normal_force` (the table output prints it; not in the
     /// JSON, whose fields are the answer's).
     #[serde(skip)]
     pub safety: f64,
-    /// Contact half-width at `normal_force` [m].
+    /// Contact half-width at `normal_force` \[m\].
     pub a: f64,
     /// Utilisation of the (unscaled) load at `command`: `1/s` unless the grid clamps.
     pub utilisation: f64,
     /// `ok`, or `saturated` when `normal_force > n_max`.
     pub status: &'static str,
     /// What a controller with this grid would command: `normal_force` clamped into
-    /// `[n_min, n_max]` [N].
+    /// `[n_min, n_max]` \[N\].
     pub command: f64,
     /// `ellipse` or `table`.
     pub mode: &'static str,
@@ -153,7 +153,7 @@ pub struct RequiredForce {
     /// which applies none.
     pub ellipse_axes: [f64; 2],
     /// `N_req(s)` on the exact limit surface (docs/model.md's table reading), with no grid: a
-    /// root search in `ln N` in f64 with the surface integrated at every trial force [N].
+    /// root search in `ln N` in f64 with the surface integrated at every trial force \[N\].
     pub exact_force: f64,
     /// `normal_force / exact_force − 1`: what this mode asks over the exact surface
     /// (never negative beyond rounding: the controller is conservative by construction).

@@ -27,7 +27,7 @@ pub struct FingerSpec {
     pub c: f64,
     /// `γ ∈ [0, 1/2]`.
     pub gamma: f64,
-    /// Half-length `l` [m] of the rectangle.
+    /// Half-length `l` \[m\] of the rectangle.
     pub half_length_m: f64,
     /// The skew of the pressure peak, if any.
     pub skew: Option<SkewParams>,
@@ -42,7 +42,7 @@ pub struct FlsRig {
 }
 
 impl FlsRig {
-    /// Builds the surfaces for normal forces in `[n_lo, n_hi]` [N] (clamped outside).
+    /// Builds the surfaces for normal forces in `[n_lo, n_hi]` \[N\] (clamped outside).
     /// Errors name the core's parameter (`k`, `c`, `gamma`, `aspect`, `skew`, ...).
     pub fn new(spec: FingerSpec, n_lo: f64, n_hi: f64) -> Result<Self, ConfigError> {
         let contact = ContactSize::<f64>::new(spec.c, spec.gamma)?;

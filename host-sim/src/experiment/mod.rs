@@ -18,7 +18,7 @@ pub use protocol::{Noise, Protocol};
 
 /// A plant the experiments can be run on.
 pub trait Rig {
-    /// The contact half-width `a` [m] at normal force `normal_n` [N], at equilibrium.
+    /// The contact half-width `a` \[m\] at normal force `normal_n` \[N\], at equilibrium.
     fn indentation_half_width_m(&self, normal_n: f64) -> f64;
 
     /// Ramps the load `s·(ft_unit_n, mn_unit_nm)` from `s = 0` at normal force `normal_n`

@@ -3,7 +3,7 @@
 //! - indentation: each normal force, the half-width;
 //! - slip: a tangential-force ramp at each normal force until gross slip (`m_n = 0`);
 //! - torsion: a moment ramp at each normal force (`f_t = 0`);
-//! - combined: ramps along fixed ratios `m_n/f_t` [m] at each normal force.
+//! - combined: ramps along fixed ratios `m_n/f_t` \[m\] at each normal force.
 //!
 //! Each measurement is repeated `repeats` times; each recorded value (the normal force
 //! included) gets its own noise ([`Noise`]). Cost: one rig call per row.
@@ -23,7 +23,7 @@ pub enum Protocol {
     Slip,
     /// Moment ramps.
     Torsion,
-    /// Ramps along `m_n/f_t` ratios [m].
+    /// Ramps along `m_n/f_t` ratios \[m\].
     Combined(Vec<f64>),
 }
 
@@ -34,11 +34,11 @@ pub enum Protocol {
 pub struct Noise {
     /// Relative standard deviation (0.02 is 2 %).
     pub relative: f64,
-    /// Additive standard deviation of the force channels [N].
+    /// Additive standard deviation of the force channels \[N\].
     pub force_n: f64,
     /// Additive standard deviation of the moment channel [N·m].
     pub moment_nm: f64,
-    /// Additive standard deviation of the half-width [m].
+    /// Additive standard deviation of the half-width \[m\].
     pub width_m: f64,
     rng: ChaCha8Rng,
 }
@@ -136,7 +136,7 @@ pub fn onsets(
     rows
 }
 
-/// The default combined ratios `m_n/f_t` [m]: 1, 2.5 and 6 mm, which put the onsets of a
+/// The default combined ratios `m_n/f_t` \[m\]: 1, 2.5 and 6 mm, which put the onsets of a
 /// 1–8 mm contact across the curved part of its surface.
 pub const DEFAULT_RATIOS_M: [f64; 3] = [1e-3, 2.5e-3, 6e-3];
 

@@ -48,10 +48,10 @@ pub struct Finger {
     /// `γ` in `a = c·N^γ`; required for `fls` (NaN when absent).
     #[serde(default = "absent")]
     pub gamma: f64,
-    /// Half-length `l` of the rectangular patch [m].
+    /// Half-length `l` of the rectangular patch \[m\].
     #[serde(default = "default_half_length")]
     pub half_length_m: f64,
-    /// Young's modulus of the fingertip [Pa] (partial slip, the brush's layer).
+    /// Young's modulus of the fingertip \[Pa\] (partial slip, the brush's layer).
     #[serde(default = "default_young")]
     pub young_modulus_pa: f64,
     /// Poisson's ratio (partial slip, the brush's layer).

@@ -6,22 +6,22 @@ use std::collections::BTreeMap;
 /// One tick of one run. Loads are per contact (each of the two fingertips of the pinch).
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Sample {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub t_s: f64,
-    /// True tangential load magnitude on the contact [N].
+    /// True tangential load magnitude on the contact \[N\].
     pub ft_n: f64,
     /// True torsional moment on the contact [N·m].
     pub mn_nm: f64,
-    /// Measured tangential force magnitude as the controller saw it [N] (NaN if the frame
+    /// Measured tangential force magnitude as the controller saw it \[N\] (NaN if the frame
     /// carried no usable value).
     pub ft_meas_n: f64,
     /// Measured torsional moment [N·m] (NaN likewise).
     pub mn_meas_nm: f64,
-    /// The controller's command [N].
+    /// The controller's command \[N\].
     pub n_cmd_n: f64,
-    /// The normal force the actuator actually applies [N].
+    /// The normal force the actuator actually applies \[N\].
     pub n_true_n: f64,
-    /// True contact half-width [m].
+    /// True contact half-width \[m\].
     pub a_true_m: f64,
     /// True `f̃ = f_t/(μN)`.
     pub f_norm: f64,
@@ -33,9 +33,9 @@ pub struct Sample {
     pub utilisation: f64,
     /// Whether the contact is sliding this tick.
     pub slipping: bool,
-    /// Cumulative slip distance [m].
+    /// Cumulative slip distance \[m\].
     pub slip_distance_m: f64,
-    /// Cumulative slip rotation [rad].
+    /// Cumulative slip rotation \[rad\].
     pub slip_rotation_rad: f64,
     /// The controller's status name (`ok`, `saturated`, ..., or `none` for baselines and
     /// lost replies).
@@ -69,13 +69,13 @@ pub struct RunSummary {
     pub dropped: bool,
     /// Number of separate slip episodes.
     pub slip_events: u64,
-    /// Total slip distance [m].
+    /// Total slip distance \[m\].
     pub slip_distance_m: f64,
-    /// Total slip rotation [rad].
+    /// Total slip rotation \[rad\].
     pub slip_rotation_rad: f64,
-    /// Mean applied normal force [N].
+    /// Mean applied normal force \[N\].
     pub mean_normal_force_n: f64,
-    /// Peak applied normal force [N].
+    /// Peak applied normal force \[N\].
     pub peak_normal_force_n: f64,
     /// Whether the scene is an overload that no allowed force can hold.
     pub expected_slip: bool,
@@ -83,9 +83,9 @@ pub struct RunSummary {
     pub max_utilisation: f64,
     /// Ticks simulated.
     pub ticks: u64,
-    /// Simulated duration [s].
+    /// Simulated duration \[s\].
     pub duration_s: f64,
-    /// Wall-clock time of the run [s].
+    /// Wall-clock time of the run \[s\].
     pub wall_s: f64,
     /// Simulated seconds per wall second.
     pub real_time_factor: f64,

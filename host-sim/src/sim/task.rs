@@ -13,9 +13,9 @@ use serde::Deserialize;
 pub enum Phase {
     /// Lift: a smooth accelerate–decelerate bump upward, `a = A·sin(2πx)`.
     Lift {
-        /// Start [s].
+        /// Start \[s\].
         start_s: f64,
-        /// End [s].
+        /// End \[s\].
         end_s: f64,
         /// Peak upward acceleration [m/s²].
         #[serde(default)]
@@ -23,16 +23,16 @@ pub enum Phase {
     },
     /// Hold: no load of its own.
     Hold {
-        /// Start [s].
+        /// Start \[s\].
         start_s: f64,
-        /// End [s].
+        /// End \[s\].
         end_s: f64,
     },
     /// Twist: a smooth accelerate–decelerate turn about the grasp axis.
     Twist {
-        /// Start [s].
+        /// Start \[s\].
         start_s: f64,
-        /// End [s].
+        /// End \[s\].
         end_s: f64,
         /// Peak angular acceleration [rad/s²].
         #[serde(default)]
@@ -40,25 +40,25 @@ pub enum Phase {
     },
     /// Shake: a vertical sinusoidal acceleration.
     Shake {
-        /// Start [s].
+        /// Start \[s\].
         start_s: f64,
-        /// End [s].
+        /// End \[s\].
         end_s: f64,
         /// Acceleration amplitude [m/s²].
         #[serde(default)]
         amplitude_m_s2: f64,
-        /// Frequency [Hz].
+        /// Frequency \[Hz\].
         #[serde(default)]
         frequency_hz: f64,
     },
     /// Pull: an external force along the cylinder axis and a twisting moment, ramped in
     /// over the first 10 % of the phase.
     Pull {
-        /// Start [s].
+        /// Start \[s\].
         start_s: f64,
-        /// End [s].
+        /// End \[s\].
         end_s: f64,
-        /// The force [N].
+        /// The force \[N\].
         #[serde(default)]
         force_n: f64,
         /// The moment [N·m].
@@ -79,7 +79,7 @@ impl Phase {
         }
     }
 
-    /// `[start_s, end_s)` [s].
+    /// `[start_s, end_s)` \[s\].
     pub fn span_s(&self) -> (f64, f64) {
         match *self {
             Phase::Lift { start_s, end_s, .. }

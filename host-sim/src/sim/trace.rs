@@ -136,7 +136,7 @@ impl PlotTrace {
         self.seen
     }
 
-    /// The present stride between kept samples [ticks].
+    /// The present stride between kept samples \[ticks\].
     pub fn stride(&self) -> u64 {
         self.stride
     }

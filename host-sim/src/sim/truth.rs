@@ -91,7 +91,7 @@ impl Truth {
         self.mu
     }
 
-    /// The equilibrium half-width `c·N^γ` [m].
+    /// The equilibrium half-width `c·N^γ` \[m\].
     pub fn half_width_m(&self, normal_n: f64) -> f64 {
         self.contact.half_width_m(normal_n)
     }

@@ -81,7 +81,7 @@ pub const UTILISATION_MAX: f64 = 1e6;
 /// A solve's answer and its cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solution<T> {
-    /// The least force that holds [N].
+    /// The least force that holds \[N\].
     pub force_n: T,
     /// Illinois iterations spent (0 when a node or a closed form answered).
     pub iterations: u8,
@@ -189,12 +189,12 @@ impl<T: Real> Capacity<T> {
         self.mode
     }
 
-    /// The node forces [N], from `N_min` to `N_max`.
+    /// The node forces \[N\], from `N_min` to `N_max`.
     pub fn forces_n(&self) -> &[T] {
         self.force_n.get(..self.nodes).unwrap_or(&[])
     }
 
-    /// The moment arms `a·pitch` [m] at the node forces.
+    /// The moment arms `a·pitch` \[m\] at the node forces.
     pub fn arms_m(&self) -> &[T] {
         self.arm_m.get(..self.nodes).unwrap_or(&[])
     }
@@ -266,7 +266,7 @@ impl<T: Real> Capacity<T> {
         (arm, pos)
     }
 
-    /// The least normal force [N] at which the (already scaled) demand `f = F`, `m = M`
+    /// The least normal force \[N\] at which the (already scaled) demand `f = F`, `m = M`
     /// holds: `N_req`. Inputs must be finite and non-negative (the tick guarantees it).
     /// Cost: `log2(force_nodes)` node tests, then at most [`max_illinois_iterations`].
     pub fn required_force<M: TickMath<T>>(&self, f: T, m: T) -> Solution<T> {

@@ -8,9 +8,9 @@ use crate::real::Real;
 /// building a controller without precomputation ([`Capacity::from_tables`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tables<'a, T> {
-    /// Node forces `N_j` [N], increasing, from `N_min` to `N_max`.
+    /// Node forces `N_j` \[N\], increasing, from `N_min` to `N_max`.
     pub force_n: &'a [T],
-    /// Moment arms `R_j = a(N_j)·pitch(l/a(N_j))` [m].
+    /// Moment arms `R_j = a(N_j)·pitch(l/a(N_j))` \[m\].
     pub arm_m: &'a [T],
     /// `1/R_j` [1/m], stored so that imported tables give bit-identical ticks.
     pub inv_arm_per_m: &'a [T],

@@ -99,13 +99,13 @@ pub fn log_space(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 /// One load of the error set, with its exact answers.
 #[derive(Debug, Clone, Copy)]
 pub struct Load {
-    /// Tangential force components [N].
+    /// Tangential force components \[N\].
     pub fx: f64,
     /// See `fx`.
     pub fy: f64,
     /// Torsional moment [N·m].
     pub mn: f64,
-    /// Measured normal force [N].
+    /// Measured normal force \[N\].
     pub n_meas: f64,
     /// `N_req(s)` of the ellipse rule with the exact pitch.
     pub n_ellipse: f64,
@@ -117,9 +117,9 @@ pub struct Load {
 /// exact utilisation.
 #[derive(Debug, Clone, Copy)]
 pub struct GridPoint {
-    /// Normal force [N].
+    /// Normal force \[N\].
     pub n: f64,
-    /// Tangential force [N].
+    /// Tangential force \[N\].
     pub ft: f64,
     /// Torsional moment [N·m].
     pub mn: f64,

@@ -169,9 +169,9 @@ pub struct Measured {
     pub n_err: [f64; 2],
     /// The largest under-ask against the exact surface (relative, ≥ 0).
     pub under_ask: f64,
-    /// Host start-up time [µs] (rectangle, median).
+    /// Host start-up time \[µs\] (rectangle, median).
     pub precompute_us: f64,
-    /// Host time per tick [ns] (rectangle, median).
+    /// Host time per tick \[ns\] (rectangle, median).
     pub tick_ns: f64,
 }
 

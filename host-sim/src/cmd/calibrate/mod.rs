@@ -14,7 +14,7 @@ use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
 use softgrip_calibrate::{calibrate, CalibError, Setup};
 use std::path::{Path, PathBuf};
 
-/// Largest lab file [bytes] (a million rows of three numbers is about 40 MiB).
+/// Largest lab file \[bytes\] (a million rows of three numbers is about 40 MiB).
 pub const CSV_CAP_BYTES: u64 = 64 << 20;
 
 /// Output format of `calibrate`.

@@ -36,14 +36,14 @@ pub enum Plant {
     /// The exact limit surface of softgrip's core with a = c·N^γ.
     Fls,
     /// The physical brush finger (elastic foundation, stick-slip bristles; docs/
-    /// brush-finger.md): needs --finger with a scene whose [finger] has model = "brush".
+    /// brush-finger.md): needs --finger with a scene whose finger table has model = "brush".
     Brush,
 }
 
 /// The finger as flags (when no `--finger` file is given).
 #[derive(Debug, Clone, Args)]
 pub struct FingerArgs {
-    /// A scene or finger TOML whose [finger] table (and [effect.skewed_pressure] if its
+    /// A scene or finger TOML whose finger table (and [effect.skewed_pressure] if its
     /// effects list it) describe the finger; excludes the flags below.
     #[arg(long, conflicts_with_all = ["shape", "k", "mu", "c", "gamma", "half_length", "skew", "alpha", "locus"])]
     pub finger: Option<PathBuf>,
@@ -62,7 +62,7 @@ pub struct FingerArgs {
     /// γ in [0, 1/2] [default: 0.5].
     #[arg(long)]
     pub gamma: Option<f64>,
-    /// Half-length l of the rectangular patch [m] [default: 0.01].
+    /// Half-length l of the rectangular patch in metres [default: 0.01].
     #[arg(long)]
     pub half_length: Option<f64>,
     /// Skew of the pressure peak Δ/a in [0, 1) [default: 0, none].

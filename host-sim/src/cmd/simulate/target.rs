@@ -35,17 +35,17 @@ pub struct TargetReport {
     /// Instructions per tick by mode, over all ticks of all scenes run (median of the
     /// per-run medians, and the extremes).
     pub tick_instructions: BTreeMap<String, Spread>,
-    /// Section sizes [bytes]: `.vector_table`, `.text`, `.rodata`, `.data`, `.bss`,
+    /// Section sizes \[bytes\]: `.vector_table`, `.text`, `.rodata`, `.data`, `.bss`,
     /// `.uninit`.
     pub sections: BTreeMap<String, u64>,
-    /// Flash use [bytes]: vector table, code, read-only data and the initial values of
+    /// Flash use \[bytes\]: vector table, code, read-only data and the initial values of
     /// `.data`.
     pub flash_bytes: u64,
-    /// Static RAM [bytes]: `.data`, `.bss`, `.uninit`.
+    /// Static RAM \[bytes\]: `.data`, `.bss`, `.uninit`.
     pub static_ram_bytes: u64,
-    /// The deepest stack of any run [bytes], by stack painting.
+    /// The deepest stack of any run \[bytes\], by stack painting.
     pub stack_peak_bytes: f64,
-    /// Static RAM plus the stack peak [bytes].
+    /// Static RAM plus the stack peak \[bytes\].
     pub ram_bytes: f64,
 }
 

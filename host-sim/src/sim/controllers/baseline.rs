@@ -29,13 +29,13 @@ impl Limits {
     }
 }
 
-/// The force the cone of `fixed-torsion` asks for a load `(f, m)` at safety 1 [N]:
-/// `hypot(f/μ, m/(μ·arm))`, `arm` the fixed patch's torsion arm [m].
+/// The force the cone of `fixed-torsion` asks for a load `(f, m)` at safety 1 \[N\]:
+/// `hypot(f/μ, m/(μ·arm))`, `arm` the fixed patch's torsion arm \[m\].
 pub fn cone_force_n(f: f64, m: f64, mu: f64, arm_m: f64) -> f64 {
     (f / mu).hypot(m / (mu * arm_m))
 }
 
-/// The force the `box` asks for a load `(f, m)` at safety 1 [N]: `max(f/μ, m/(μ·arm))`.
+/// The force the `box` asks for a load `(f, m)` at safety 1 \[N\]: `max(f/μ, m/(μ·arm))`.
 pub fn box_force_n(f: f64, m: f64, mu: f64, arm_m: f64) -> f64 {
     (f / mu).max(m / (mu * arm_m))
 }
@@ -43,12 +43,12 @@ pub fn box_force_n(f: f64, m: f64, mu: f64, arm_m: f64) -> f64 {
 /// What the baselines are told besides softgrip's configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BaselineSettings {
-    /// The constant baseline's force [N] (and the force at which the default fixed patch
+    /// The constant baseline's force \[N\] (and the force at which the default fixed patch
     /// is taken).
     pub constant_n: f64,
     /// The μ of the cone, box and fixed-torsion; `None`: softgrip's.
     pub mu: Option<f64>,
-    /// The fixed patch's torsion arm [m]; `None`: `a·pitch` at `constant_n`.
+    /// The fixed patch's torsion arm \[m\]; `None`: `a·pitch` at `constant_n`.
     pub torsion_arm_m: Option<f64>,
 }
 

@@ -224,7 +224,7 @@ pub enum LinkKind {
 /// What a controller answers to one tick.
 #[derive(Debug, Clone, Copy)]
 pub struct Answer {
-    /// Commanded normal force [N].
+    /// Commanded normal force \[N\].
     pub command_n: f64,
     /// Status name.
     pub status: &'static str,

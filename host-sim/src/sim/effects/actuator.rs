@@ -13,11 +13,11 @@ use serde::Deserialize;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ActuatorSettings {
-    /// Time constant of the lag [s], in [0, 1e3] (0: none).
+    /// Time constant of the lag \[s\], in [0, 1e3] (0: none).
     pub time_constant_s: f64,
     /// Slew limit [N/s], in [1e-6, 1e9].
     pub slew_n_per_s: f64,
-    /// Stall force [N], in [0, 1e9].
+    /// Stall force \[N\], in [0, 1e9].
     pub max_force_n: f64,
 }
 

@@ -19,7 +19,7 @@ use serde::Deserialize;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CreepSettings {
-    /// Relaxation time constant `τ` [s], in [1e-6, 1e6].
+    /// Relaxation time constant `τ` \[s\], in [1e-6, 1e6].
     pub time_constant_s: f64,
     /// The part `φ` of a change that happens at once, in [0, 1].
     pub instant_fraction: f64,

@@ -14,13 +14,13 @@ use serde::Deserialize;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DisturbanceSettings {
-    /// Mean rate of bumps [Hz], in [0, 1e4].
+    /// Mean rate of bumps \[Hz\], in [0, 1e4].
     pub rate_hz: f64,
-    /// Peak force of a bump [N], in [0, 1e6].
+    /// Peak force of a bump \[N\], in [0, 1e6].
     pub force_n: f64,
     /// Peak moment of a bump [N·m], in [0, 1e6].
     pub moment_nm: f64,
-    /// Length of a bump [s], in [1e-6, 1e3].
+    /// Length of a bump \[s\], in [1e-6, 1e3].
     pub duration_s: f64,
 }
 

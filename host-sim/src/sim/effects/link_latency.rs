@@ -14,7 +14,7 @@ use std::collections::VecDeque;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LinkLatencySettings {
-    /// The delay [ticks], in [0, 1e5]; a fraction is dropped.
+    /// The delay \[ticks\], in [0, 1e5]; a fraction is dropped.
     pub delay_ticks: f64,
 }
 

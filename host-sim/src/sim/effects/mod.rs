@@ -104,32 +104,32 @@ use std::time::{Duration, Instant};
 /// object; the two fingertips of the pinch each carry half.
 #[derive(Debug, Clone, Default)]
 pub struct World {
-    /// Time [s].
+    /// Time \[s\].
     pub t_s: f64,
-    /// Step [s].
+    /// Step \[s\].
     pub dt_s: f64,
-    /// Object mass [kg].
+    /// Object mass \[kg\].
     pub mass_kg: f64,
     /// Inertia about the grasp axis [kg·m²].
     pub inertia_kg_m2: f64,
-    /// Lever arm of gravity about the grasp axis [m].
+    /// Lever arm of gravity about the grasp axis \[m\].
     pub com_offset_m: f64,
     /// How much of the object's weight the grasp carries (0 on the table, 1 lifted).
     pub support_fraction: f64,
     /// Tangential force the grasp must apply to the object: x along the cylinder axis,
-    /// y across it (vertical) [N].
+    /// y across it (vertical) \[N\].
     pub force_n: [f64; 2],
     /// Moment the grasp must apply about its axis [N·m].
     pub moment_nm: f64,
-    /// The controller's latest command [N].
+    /// The controller's latest command \[N\].
     pub command_n: f64,
-    /// The normal force each fingertip applies [N].
+    /// The normal force each fingertip applies \[N\].
     pub normal_n: f64,
-    /// Equilibrium contact half-width at `normal_n`, `c·N^γ` [m].
+    /// Equilibrium contact half-width at `normal_n`, `c·N^γ` \[m\].
     pub half_width_eq_m: f64,
-    /// True contact half-width [m] (equal to the equilibrium unless creep is on).
+    /// True contact half-width \[m\] (equal to the equilibrium unless creep is on).
     pub half_width_m: f64,
-    /// Tangential micro-displacement before gross slip (Eq. 5) [m], when partial slip
+    /// Tangential micro-displacement before gross slip (Eq. 5) \[m\], when partial slip
     /// is on.
     pub micro_slip_m: f64,
     /// The true utilisation of the last tick's load (≥ 1 slips), for sensors that see
@@ -140,7 +140,7 @@ pub struct World {
 }
 
 impl World {
-    /// The tangential load on one contact: half the object's [N].
+    /// The tangential load on one contact: half the object's \[N\].
     pub fn contact_force_n(&self) -> [f64; 2] {
         [self.force_n[0] / 2.0, self.force_n[1] / 2.0]
     }

@@ -19,7 +19,7 @@ pub struct SensorFaultsSettings {
     pub dropout_prob: f64,
     /// Probability of a NaN reading per frame, in [0, 1].
     pub nan_prob: f64,
-    /// Saturation of the force channels [N], at least 0 (infinite: off).
+    /// Saturation of the force channels \[N\], at least 0 (infinite: off).
     pub saturation_n: f64,
     /// Saturation of the moment channel [N·m], at least 0 (infinite: off).
     pub saturation_nm: f64,

@@ -14,13 +14,13 @@ use softgrip::protocol::SensorFrame;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorNoiseSettings {
-    /// Standard deviation of the tangential force's noise [N], in [0, 1e6].
+    /// Standard deviation of the tangential force's noise \[N\], in [0, 1e6].
     pub force_sd_n: f64,
     /// Standard deviation of the moment's noise [N·m], in [0, 1e6].
     pub moment_sd_nm: f64,
-    /// Standard deviation of the normal force's noise [N], in [0, 1e6].
+    /// Standard deviation of the normal force's noise \[N\], in [0, 1e6].
     pub normal_sd_n: f64,
-    /// Bias of the tangential force [N], in [-1e6, 1e6].
+    /// Bias of the tangential force \[N\], in [-1e6, 1e6].
     pub bias_force_n: f64,
     /// Bias of the moment [N·m], in [-1e6, 1e6].
     pub bias_moment_nm: f64,

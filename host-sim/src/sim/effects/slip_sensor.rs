@@ -40,11 +40,11 @@ use std::collections::VecDeque;
 pub struct SlipSensorSettings {
     /// The true utilisation above which it reports `Incipient`, in [0, 1].
     pub incipient_utilisation: f64,
-    /// How late it reports [s], in [0, 10].
+    /// How late it reports \[s\], in [0, 10].
     pub latency_s: f64,
     /// Probability of missing a whole episode, in [0, 1].
     pub miss_probability: f64,
-    /// Rate of false `Incipient` reports [Hz], in [0, 1e4].
+    /// Rate of false `Incipient` reports \[Hz\], in [0, 1e4].
     pub false_alarm_rate_hz: f64,
 }
 

@@ -95,7 +95,7 @@ pub(super) fn clip_above(points: &[(f64, f64)], y_max: f64) -> (Vec<Polyline>, P
 }
 
 /// [`plot_force`] with each run's slip intervals given (`slips[i]` for `runs[i]`, as
-/// `(start, end)` times [s]) instead of found in its samples: for samples decimated for
+/// `(start, end)` times \[s\]) instead of found in its samples: for samples decimated for
 /// plotting (`sim::trace`), whose intervals were taken from every tick.
 pub fn plot_force_with_slips(
     path: &Path,

@@ -63,8 +63,8 @@ pub(super) fn render_table(headers: &[&str], align: &[Align], rows: &[Vec<String
 }
 
 /// A fixed-width text table of the runs, one row each, in input order: scene, controller,
-/// dropped (yes/no), slip events, slip distance [mm], slip rotation [mrad], mean N [N],
-/// peak N [N], max utilisation, expected slip (yes/no) and the [`verdict`].
+/// dropped (yes/no), slip events, slip distance \[mm\], slip rotation \[mrad\], mean N \[N\],
+/// peak N \[N\], max utilisation, expected slip (yes/no) and the [`verdict`].
 pub fn summary_table(runs: &[RunSummary]) -> String {
     use Align::{Left as L, Right as R};
     let headers = [
@@ -128,8 +128,8 @@ pub(super) fn held(r: &RunSummary) -> bool {
 ///
 /// First a table with one row per controller (in order of first appearance): scenes held
 /// of those not expected to slip (e.g. `5/6`), total slip events, total slip distance
-/// [mm] (both totals over every scene, overloads included), mean of the runs' mean normal
-/// force [N] and the largest peak force [N]. Then one line per scene (in order of first
+/// \[mm\] (both totals over every scene, overloads included), mean of the runs' mean normal
+/// force \[N\] and the largest peak force \[N\]. Then one line per scene (in order of first
 /// appearance) naming the controllers that held it and the one(s) with the least mean
 /// force. Wherever a baseline (a controller whose name does not start with `softgrip`)
 /// holds a scene with a mean force no larger than a softgrip controller's, or holds a

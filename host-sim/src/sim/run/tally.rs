@@ -3,13 +3,13 @@
 use crate::sim::effects::World;
 use crate::sim::truth::TrueLoad;
 
-/// Slip distance beyond which the object is lost from the grasp [m] (10 mm).
+/// Slip distance beyond which the object is lost from the grasp \[m\] (10 mm).
 pub const DROP_DISTANCE_M: f64 = 0.01;
-/// Slip rotation beyond which the object is lost from the grasp [rad].
+/// Slip rotation beyond which the object is lost from the grasp \[rad\].
 pub const DROP_ROTATION_RAD: f64 = 0.2;
 
-/// Whether an object that has slid `slip_distance_m` [m] and turned `slip_rotation_rad`
-/// [rad] relative to the fingertips is dropped: more than [`DROP_DISTANCE_M`] or more
+/// Whether an object that has slid `slip_distance_m` \[m\] and turned `slip_rotation_rad`
+/// \[rad\] relative to the fingertips is dropped: more than [`DROP_DISTANCE_M`] or more
 /// than [`DROP_ROTATION_RAD`]. The only definition of a drop.
 pub fn is_drop(slip_distance_m: f64, slip_rotation_rad: f64) -> bool {
     slip_distance_m > DROP_DISTANCE_M || slip_rotation_rad.abs() > DROP_ROTATION_RAD

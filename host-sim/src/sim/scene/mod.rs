@@ -68,9 +68,9 @@ pub struct Scene {
     /// What the scene exercises, for people.
     #[serde(default)]
     pub description: String,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub duration_s: f64,
-    /// Control rate [Hz]: one plant step and one controller tick per period.
+    /// Control rate \[Hz\]: one plant step and one controller tick per period.
     #[serde(default = "default_tick_hz")]
     pub tick_hz: f64,
     /// Seed of every random effect.
@@ -110,9 +110,9 @@ fn default_tick_hz() -> f64 {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Object {
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass_kg: f64,
-    /// Distance of the centre of mass from the grasp axis [m]: gravity's lever arm.
+    /// Distance of the centre of mass from the grasp axis \[m\]: gravity's lever arm.
     #[serde(default)]
     pub com_offset_m: f64,
     /// Moment of inertia about the grasp axis [kg·m²].
@@ -130,12 +130,12 @@ fn default_inertia() -> f64 {
 /// own settings.
 #[derive(Debug, Clone, Default, Deserialize)]
 pub struct ControllerSettings {
-    /// The force of the `constant` baseline [N]; default the fault force.
+    /// The force of the `constant` baseline \[N\]; default the fault force.
     pub constant_force_n: Option<f64>,
     /// The μ the cone, box and fixed-torsion baselines believe (e.g. from a slip test);
     /// default softgrip's `mu`.
     pub baseline_mu: Option<f64>,
-    /// The torsion arm `μ_t/μ` [m] of the box and fixed-torsion baselines' fixed patch
+    /// The torsion arm `μ_t/μ` \[m\] of the box and fixed-torsion baselines' fixed patch
     /// (e.g. from a torsion test); default `a·pitch` of the contact at
     /// `constant_force_n`.
     pub baseline_torsion_arm_m: Option<f64>,
@@ -146,7 +146,7 @@ pub struct ControllerSettings {
 }
 
 impl ControllerSettings {
-    /// The baselines' settings, with `fault_force_n` [N] the constant force's default.
+    /// The baselines' settings, with `fault_force_n` \[N\] the constant force's default.
     pub fn baseline(&self, fault_force_n: f64) -> crate::sim::controllers::BaselineSettings {
         crate::sim::controllers::BaselineSettings {
             constant_n: self.constant_force_n.unwrap_or(fault_force_n),

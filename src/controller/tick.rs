@@ -122,7 +122,7 @@ pub const RESYNC_FRAMES: u8 = 3;
 /// of any length are taken at once. Anything else (a repeat, an
 /// older frame, a jump into the far future such as `u64::MAX`) is refused as
 /// `StaleInput`, counted ([`Controller::time_rejections`]), and leaves the anchor where it
-/// was: one bad timestamp costs exactly one frame. When `RESYNC_FRAMES` (3) refused frames
+/// was: one bad timestamp costs exactly one frame. When [`RESYNC_FRAMES`] refused frames
 /// in a row each follow the one before by a plausible step, the sensor's clock has really
 /// moved (a restart, a long silence): the last of them is accepted and becomes the new
 /// anchor.

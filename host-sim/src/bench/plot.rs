@@ -13,10 +13,10 @@ const SIZE: (u32, u32) = (1500, 650);
 
 /// Drop rates up to this [%] are the right panel's range: the region of the Pareto check
 /// (baseline settings that drop at most 10 %), with room for the markers.
-const ZOOM_DROP_PCT: f64 = 12.0;
+pub const ZOOM_DROP_PCT: f64 = 12.0;
 
 /// The SVG text of the Pareto plot of `family`'s rows: every setting on the left, the
-/// settings that drop at most `ZOOM_DROP_PCT` (12) % on the right, on linear axes.
+/// settings that drop at most [`ZOOM_DROP_PCT`] % on the right, on linear axes.
 pub fn pareto_svg(family: &str, rows: &[Row]) -> Result<String, String> {
     let mut svg = String::new();
     {

@@ -2,7 +2,7 @@
 """The grip through a window of a bench trace: per trace CSV (`bench --trace`), the mean
 commanded force, its standard deviation, and the object's turn at the window's ends.
 
-    python3 scripts/hold-stats.py OUT/trace/lift-hold 0.8 1.2 [PATTERN]
+    python3 scripts/hold-stats.py OUT/trace/lift-hold/SEED 0.8 1.2 [PATTERN]
 
 PATTERN (a substring of the file name, e.g. `safety1.2.`) picks the traces; the rest of
 the name says the trial, the controller and its setting.

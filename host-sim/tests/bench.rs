@@ -554,3 +554,64 @@ fn a_drop_with_less_than_a_slides_distance_is_counted_as_a_turn() {
         ""
     );
 }
+
+/// `bench --trace` keeps each seed's trials apart (a trial's index repeats across seeds)
+/// and writes each trial's scene beside its traces, and the scene replays a traced run
+/// sample for sample.
+#[test]
+fn a_trace_keeps_seeds_apart_and_its_scene_replays_the_run() {
+    let out = std::env::temp_dir().join(format!("softgrip-trace-{}", std::process::id()));
+    let exe = env!("CARGO_BIN_EXE_host-sim");
+    let status = std::process::Command::new(exe)
+        .args([
+            "bench",
+            "--family",
+            "lift-hold",
+            "--seeds",
+            "5,6",
+            "--trials",
+        ])
+        .args([
+            "1",
+            "--controller",
+            "fixed-torsion",
+            "--trace",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let mut scenes = Vec::new();
+    for seed in ["5", "6"] {
+        let dir = out.join("trace").join("lift-hold").join(seed);
+        let text = std::fs::read_to_string(dir.join("0000-scene.toml")).unwrap();
+        let scene = Scene::parse(&text).unwrap();
+        let knob = sweep::with_knob(
+            &scene,
+            host_sim::sim::controllers::ControllerKind::FixedTorsion,
+            1.3,
+        );
+        let options = RunOptions {
+            skip_samples: false,
+            truth: None,
+            untimed: true,
+        };
+        let replay = run_with(&knob, "fixed-torsion", &LinkKind::Direct, None, options).unwrap();
+        let path = out.join(format!("replay-{seed}.csv"));
+        host_sim::sim::report::write_csv(&path, &replay.samples).unwrap();
+        let traced = std::fs::read(dir.join("0000-fixed-torsion-safety1.3.csv")).unwrap();
+        assert!(traced.len() > 1000, "seed {seed}");
+        assert!(
+            std::fs::read(&path).unwrap() == traced,
+            "seed {seed}: the replay differs"
+        );
+        scenes.push(text);
+    }
+    assert_ne!(
+        scenes[0], scenes[1],
+        "the two seeds' trial 0 must be two trials"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -41,7 +41,7 @@ use indicatif::ProgressBar;
 use rayon::prelude::*;
 use stats::Row;
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use sweep::{Sweep, TrialResult};
 use trial_finger::FingerSource;
 
@@ -91,7 +91,8 @@ pub struct BenchOptions {
     /// Output directory: `bench.json`, `trials-FAMILY.csv`, `pareto-FAMILY.svg/.png`,
     /// `trace/`.
     pub out: PathBuf,
-    /// Keep and write every run's per-tick samples (CSV under `OUT/trace/FAMILY/`).
+    /// Keep and write every run's per-tick samples (CSV under `OUT/trace/FAMILY/SEED/`,
+    /// beside each trial's scene, which `simulate` replays).
     pub trace: bool,
     /// No progress bar.
     pub quiet: bool,
@@ -208,6 +209,14 @@ fn trace_dirs(opts: &BenchOptions) -> Result<Vec<Option<PathBuf>>, BenchError> {
         .collect()
 }
 
+/// The trace folder of `seed` under its family's, made if need be: a trial's index is
+/// unique only within its seed.
+fn seed_trace_dir(family_dir: &Path, seed: u64) -> Result<PathBuf, String> {
+    let dir = family_dir.join(seed.to_string());
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    Ok(dir)
+}
+
 /// Runs `units` (in parallel) and returns their results in the same order; with a pty
 /// link, also checks the first [`PTY_SAMPLE`] trials of each family and seed among them.
 fn run_units(
@@ -220,9 +229,12 @@ fn run_units(
         .par_iter()
         .map(|u| {
             let fam = opts.families.iter().position(|f| *f == u.family);
-            let dir = fam.and_then(|i| dirs[i].as_deref());
+            let dir = match fam.and_then(|i| dirs[i].as_deref()) {
+                Some(d) => Some(seed_trace_dir(d, u.seed)?),
+                None => None,
+            };
             let t = families::trial_on(&opts.source, &opts.ranges, u.family, u.seed, u.index)?;
-            let r = sweep::run_trial(&t, &opts.sweeps, &LinkKind::Direct, dir);
+            let r = sweep::run_trial(&t, &opts.sweeps, &LinkKind::Direct, dir.as_deref());
             bar.inc(1);
             r
         })

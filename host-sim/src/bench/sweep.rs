@@ -148,8 +148,10 @@ pub struct TrialResult {
     pub runs: Vec<RunRow>,
 }
 
-/// Runs `trial` against every sweep in `sweeps` on `link`. With `trace`, each run's
-/// per-tick samples are written as CSV under that directory.
+/// Runs `trial` against every sweep in `sweeps` on `link`. With `trace`, the trial's
+/// scene is written under that directory as `NNNN-scene.toml` (`NNNN` the trial's index;
+/// `simulate` replays it) and each run's per-tick samples as
+/// `NNNN-CONTROLLER-KNOBVALUE.csv`.
 pub fn run_trial(
     trial: &Trial,
     sweeps: &[Sweep],
@@ -160,6 +162,10 @@ pub fn run_trial(
     let cfg = run::controller_config(scene).map_err(|e| e.to_string())?;
     let oracle_mean_n =
         oracle::mean_oracle_force_n(scene, trial.limit.as_ref(), cfg.n_min_n, cfg.n_max_n)?;
+    if let Some(dir) = trace {
+        let path = dir.join(format!("{:04}-scene.toml", trial.index));
+        std::fs::write(&path, &trial.text).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     let options = RunOptions {
         skip_samples: trace.is_none(),
         truth: Some(trial.truth.as_ref()),

@@ -49,7 +49,8 @@ pub struct BenchArgs {
     /// give identical results). qemu and serial are `simulate`'s only.
     #[arg(long, value_enum, default_value = "direct")]
     pub link: LinkName,
-    /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/).
+    /// Keep and write every run's per-tick samples (CSV under OUT/trace/FAMILY/SEED/,
+    /// beside each trial's scene as NNNN-scene.toml, which `simulate` replays).
     #[arg(long)]
     pub trace: bool,
     /// No progress bar.

@@ -19,6 +19,4 @@ pub use config::{Checked, ControllerConfig, FingerShape, Mode, SkewParams, WireM
 pub use math::{Libm, Micromath, TickMath};
 pub use slip::SlipSignal;
 pub use status::Status;
-pub use tick::{
-    Controller, FromTablesError, Measurement, TickOutput, RESYNC_FRAMES, TORSION_SAFETY_FACTOR,
-};
+pub use tick::{Controller, FromTablesError, Measurement, TickOutput, RESYNC_FRAMES};

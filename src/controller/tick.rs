@@ -53,12 +53,10 @@ pub struct Measurement<T> {
 pub struct TickOutput<T> {
     /// The commanded normal force \[N\], in `[N_min, N_max]`.
     pub command_n: T,
-    /// `N_req(s)`: the least force that holds the load with the safety margin, the moment's
-    /// times [`TORSION_SAFETY_FACTOR`] \[N\] (may lie outside `[N_min, N_max]`: see
-    /// [`Capacity`] for how it is extended there).
+    /// `N_req(s)`: the least force that holds the load with the safety margin \[N\] (may lie
+    /// outside `[N_min, N_max]`: see [`Capacity`] for how it is extended there).
     pub required_n: T,
-    /// `N_slip`: the force at which this load would just start to slip, no factor on
-    /// either part \[N\].
+    /// `N_slip = N_req(1)`: the force at which this load would just start to slip \[N\].
     pub n_slip_n: T,
     /// How far the load is along its way to the limit surface of the contact at the
     /// measured normal force: `< 1` holds, `≥ 1` slips. In `[0, UTILISATION_MAX]`.
@@ -84,21 +82,6 @@ pub struct TickOutput<T> {
     pub margin: T,
 }
 
-/// The factor on the safety factor that the moment alone carries in the requirement
-/// [-]: `N_req(s)` is the least force that holds `(s·f_t, s·TORSION_SAFETY_FACTOR·m_n)`,
-/// while `N_slip` (no safety factor) stays the model's own answer.
-///
-/// Why: on the brush finger (docs/bench.md, "A margin on the moment") the trials that
-/// need the largest safety factor in `lift-hold` are fingers with a round patch under a
-/// heavy moment. A turn that starts in the lift's rise goes on at a constant load, as
-/// sliding friction is below sticking friction, and a turn of 0.2 rad drops the object
-/// where a slide of the same load would have moved it a couple of millimetres. Set on
-/// bench seeds 5001 to 5004 (1.15 against 1.3 and 1.5, `lift-hold` only, then every
-/// family), apart from the held-out and the scoring seeds.
-///
-/// Cost: one multiplication per tick.
-pub const TORSION_SAFETY_FACTOR: f64 = 1.15;
-
 /// Frames in a row, each plausibly newer than the one before, that re-anchor the
 /// controller's clock when they all disagree with its anchor (see [`Controller`], "Time").
 pub const RESYNC_FRAMES: u8 = 3;
@@ -113,8 +96,7 @@ pub const RESYNC_FRAMES: u8 = 3;
 ///
 /// Each tick, for a good measurement (finite, within the sensor ranges, newer than the
 /// last good one):
-/// 1. `N_slip` from the load `(|f_t|, |m_n|)`, and `N_req(s)` from `(s·|f_t|,
-///    s·`[`TORSION_SAFETY_FACTOR`]`·|m_n|)`;
+/// 1. `N_req(s)` and `N_slip = N_req(1)` from the load `(|f_t|, |m_n|)`;
 /// 2. the target `clamp(N_req(s), N_min, N_max)`, status `Saturated` when
 ///    `N_req(s) > N_max`;
 /// 3. the command moves toward the target by at most `rise_rate·dt` up or
@@ -211,9 +193,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     }
 
     /// `N_req` for a load, without touching the controller's state: the pure rule of
-    /// docs/model.md. `safety` scales the load (1 gives `N_slip`); the tick's requirement
-    /// is this with the moment times [`TORSION_SAFETY_FACTOR`] as well. Non-finite inputs
-    /// give `None`.
+    /// docs/model.md. `safety` scales the load (1 gives `N_slip`). Non-finite inputs give
+    /// `None`.
     pub fn required_force(
         &self,
         tangential_force_n: T,
@@ -429,12 +410,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);
         self.slip_node = slip.node;
-        let req = self.capacity.required_force_scaled::<M>(
-            f,
-            mz * T::of(TORSION_SAFETY_FACTOR),
-            &slip,
-            safety,
-        );
+        let req = self
+            .capacity
+            .required_force_scaled::<M>(f, mz, &slip, safety);
         let status = if req.force_n > self.n_max {
             Status::Saturated
         } else {

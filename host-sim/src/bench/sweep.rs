@@ -151,7 +151,7 @@ pub struct TrialResult {
 /// Runs `trial` against every sweep in `sweeps` on `link`. With `trace`, the trial's
 /// scene is written under that directory as `NNNN-scene.toml` (`NNNN` the trial's index;
 /// `simulate` replays it) and each run's per-tick samples as
-/// `NNNN-CONTROLLER-KNOBVALUE.csv`.
+/// `NNNN-CONTROLLER-KNOBVALUE.csv` (`0004-softgrip-table-safety1.2.csv`).
 pub fn run_trial(
     trial: &Trial,
     sweeps: &[Sweep],

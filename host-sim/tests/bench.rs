@@ -328,24 +328,30 @@ fn the_controller_believes_its_own_mu() {
     assert_eq!(cfg.actuator_slew_n_per_s, 250.0);
 }
 
+/// Runs `host-sim bench ARGS --quiet --out OUT`.
+fn bench_cli(args: &[&str], out: &std::path::Path) -> std::process::ExitStatus {
+    std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .arg("bench")
+        .args(args)
+        .args(["--quiet", "--out"])
+        .arg(out)
+        .status()
+        .unwrap()
+}
+
 #[test]
 fn the_command_writes_json_and_both_plots() {
     let out = std::env::temp_dir().join(format!("softgrip-bench-{}", std::process::id()));
     let exe = env!("CARGO_BIN_EXE_host-sim");
-    let status = std::process::Command::new(exe)
-        .args([
-            "bench",
-            "--family",
-            "twist",
-            "--trials",
-            "3",
-            "--controller",
-        ])
-        .args(["constant", "--quiet", "--out"])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(status.success());
+    let args = [
+        "--family",
+        "twist",
+        "--trials",
+        "3",
+        "--controller",
+        "constant",
+    ];
+    assert!(bench_cli(&args, &out).success());
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
     let rows = json["rows"].as_array().unwrap();
@@ -561,28 +567,9 @@ fn a_drop_with_less_than_a_slides_distance_is_counted_as_a_turn() {
 #[test]
 fn a_trace_keeps_seeds_apart_and_its_scene_replays_the_run() {
     let out = std::env::temp_dir().join(format!("softgrip-trace-{}", std::process::id()));
-    let exe = env!("CARGO_BIN_EXE_host-sim");
-    let status = std::process::Command::new(exe)
-        .args([
-            "bench",
-            "--family",
-            "lift-hold",
-            "--seeds",
-            "5,6",
-            "--trials",
-        ])
-        .args([
-            "1",
-            "--controller",
-            "fixed-torsion",
-            "--trace",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(status.success());
+    let args = ["--family", "lift-hold", "--seeds", "5,6", "--trials", "1"];
+    let args = [&args[..], &["--controller", "fixed-torsion", "--trace"]].concat();
+    assert!(bench_cli(&args, &out).success());
     let mut scenes = Vec::new();
     for seed in ["5", "6"] {
         let dir = out.join("trace").join("lift-hold").join(seed);

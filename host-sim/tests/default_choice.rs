@@ -137,6 +137,7 @@ fn render(held: &Value) -> String {
             cell("softgrip-table")
         );
     }
+    out += &without_limit(c, &find);
     out += "\nEvery baseline enters on the same terms: the same rule, over its own knob \
             alone, chooses the default the bench marks for it (`*`).\n\n\
             | controller | default | its drops on the aims | the fewest (safe within) | \
@@ -153,6 +154,41 @@ fn render(held: &Value) -> String {
         );
     }
     out + BLOCK.1
+}
+
+/// The block's paragraph on the trials at the hand's limit: the rule without them, and
+/// table mode's drops on the aims family by family.
+fn without_limit<'a>(c: &Value, find: &impl Fn(&str, f64) -> Option<&'a Value>) -> String {
+    let w = &c["without_limit"];
+    let mut out = format!(
+        "\nOf the choice's {} drops, {} are trials at the hand's limit. Without the {} \
+         trials at the hand's limit the aims count, the fewest drops are {}, settings within \
+         {:.1} count as safe, and the rule chooses **{} at {}** ({:.3} ×). Table mode's drops \
+         on the aims, family by family:\n\n\
+         | safety | `lift-hold` | `shake` | `twist` | `mu-mismatch` (sensor) | `faults` | \
+         of them at the hand's limit |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        c["chosen"]["drops"],
+        c["chosen"]["drops_at_limit"],
+        c["aim_trials"].as_u64().unwrap() - w["aim_trials"].as_u64().unwrap(),
+        w["safest_drops"],
+        w["safe_drops_max"].as_f64().unwrap(),
+        w["chosen"]["controller"].as_str().unwrap(),
+        w["chosen"]["knob_value"],
+        w["chosen"]["force_over_oracle"].as_f64().unwrap(),
+    );
+    for k in 0..=12 {
+        let s = 1.4 + 0.05 * f64::from(k);
+        if let Some(x) = find("softgrip-table", s) {
+            let f: Vec<String> = x["drops_per_family"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(Value::to_string)
+                .collect();
+            out += &format!("| {s:.2} | {} | {} |\n", f.join(" | "), x["drops_at_limit"]);
+        }
+    }
+    out
 }
 
 #[test]
@@ -299,4 +335,68 @@ fn a_baseline_is_judged_on_its_own_settings() {
         (c[0].chosen.controller.as_str(), c[0].chosen.knob_value),
         ("fixed-torsion", 1.5)
     );
+}
+
+/// A trial of [`at_the_limit`]'s run: four columns of softgrip (ellipse 1.0, 1.5, table
+/// 1.0, 1.5) that drop as `drop` says, then `constant` at 10 N and at 20 N, of which only
+/// 20 N holds a trial `at_limit`.
+fn limit_trial(at_limit: bool, drop: [bool; 4]) -> TrialResult {
+    let row = |dropped| RunRow {
+        dropped,
+        slip_events: 0,
+        slip_distance_m: 0.0,
+        mean_force_n: 2.0,
+        peak_force_n: 2.0,
+    };
+    let mut runs: Vec<RunRow> = drop.into_iter().map(row).collect();
+    runs.extend([row(at_limit), row(false)]);
+    TrialResult {
+        true_mu: 1.0,
+        mu_ratio: 1.0,
+        sensor: true,
+        holdable: true,
+        oracle_mean_n: 2.0,
+        runs,
+    }
+}
+
+#[test]
+fn the_rule_also_says_what_it_chooses_without_the_trials_at_the_hands_limit() {
+    let mut sweeps = sweeps();
+    sweeps.push(Sweep {
+        controller: ControllerKind::Constant,
+        knob: "force_n",
+        values: &[10.0, 20.0],
+        default: 20.0,
+    });
+    // Ten trials a family; four `twist` trials at the hand's limit, which the modes drop
+    // at 1.0 and hold at 1.5.
+    let groups: Vec<FamilyResults> = ["lift-hold", "shake", "twist", "mu-mismatch", "faults"]
+        .into_iter()
+        .map(|family| FamilyResults {
+            family,
+            seed: 1,
+            results: (0..10)
+                .map(|i| {
+                    let limit = family == "twist" && i < 4;
+                    limit_trial(limit, [limit, false, limit, false])
+                })
+                .collect(),
+        })
+        .collect();
+    let c = choose(&sweeps, &groups).unwrap();
+    // Counted, 4 drops are beyond the bound of 0 in 50 (3.56): the safer setting.
+    assert_eq!((c.aim_trials, c.safest_drops), (50, 0));
+    assert_eq!(c.chosen.knob_value, 1.5);
+    let table_1 = &c.candidates[2];
+    assert_eq!(table_1.drops_per_family, [0, 0, 4, 0, 0]);
+    assert_eq!(table_1.drops_at_limit, Some(4));
+    // Left out, nothing drops: the cheaper 1.0 (a tie on force goes to the lower factor).
+    let w = c.without_limit.unwrap();
+    assert_eq!((w.aim_trials, w.safest_drops), (46, 0));
+    assert_eq!(w.chosen.knob_value, 1.0);
+    // Without a `constant` sweep there are no trials at the limit to leave out.
+    let c = choose(&sweeps[..2], &groups).unwrap();
+    assert_eq!(c.candidates[2].drops_at_limit, None);
+    assert!(c.without_limit.is_none());
 }

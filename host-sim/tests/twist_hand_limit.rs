@@ -1,7 +1,8 @@
-//! A `twist` trial at the hand's limit, on the brush finger: why no controller that grips
-//! only once it sees the load can be held to "no drop" on such trials. The trial is
-//! 2016/10 of the bench's `twist` family (a seed that no run scores, tunes or chooses a
-//! default on; docs/bench.md, "What the `twist` drops are"). No timing assertions.
+//! `twist` trials at the hand's limit, on the brush finger: why no controller that grips
+//! only once it sees the load can be held to "no drop" on such trials. The trials are
+//! 2016/10 and 2016/7 of the bench's `twist` family (a seed that no run scores, tunes or
+//! chooses a default on; docs/bench.md, "What the `twist` drops are"). No timing
+//! assertions.
 //!
 //! `cargo test --release -p host-sim --test twist_hand_limit -- --nocapture` prints the
 //! figures docs/bench.md quotes.
@@ -82,4 +83,33 @@ fn a_twist_at_the_hands_limit_turns_at_n_max_whatever_came_before() {
             assert!(most > held, "{most} against {held}");
         }
     }
+}
+
+#[test]
+fn a_grip_at_n_max_before_the_twist_still_turns_more_than_one_there_from_the_start() {
+    let brush = FingerSource::Drawn(BenchPlant::Brush);
+    let trial = families::trial_on(&brush, &Ranges::default(), "twist", 2016, 7).unwrap();
+    let constant = |n| greatest_turn(&run(&trial, ControllerKind::Constant, "constant", n));
+    let (held, below) = (constant(N_MAX_N), constant(19.5));
+    println!("trial 2016/7, constant 20 N: greatest turn {held:.5} rad; 19.5 N: {below:.5} rad");
+    assert!(held < DROP_ROTATION_RAD && below > DROP_ROTATION_RAD);
+    // At a safety factor of 100 the grip climbs from N_min to N_max at the rise rate under
+    // the object's weight alone, 0.15 s before the twist starts.
+    let samples = run(
+        &trial,
+        ControllerKind::SoftgripTable,
+        "softgrip-table",
+        100.0,
+    );
+    let ((t_max, before), most) = (at_n_max(&samples), greatest_turn(&samples));
+    println!(
+        "softgrip-table 100: N_max at {t_max:.3} s, turned {before:.5} rad by then, \
+         {most:.5} rad at most"
+    );
+    assert!(t_max < 0.2 - 0.1 && before < 0.01 * DROP_ROTATION_RAD);
+    // Those 50 ms and 2 mrad cost about ten times as much turn at the twist's peak.
+    assert!(
+        most > held + 0.05 * DROP_ROTATION_RAD,
+        "{most} against {held}"
+    );
 }

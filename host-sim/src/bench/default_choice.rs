@@ -20,8 +20,14 @@
 //! safety. Every baseline enters on the same terms: the same rule, over its own knob
 //! alone ([`baseline_choices`]), chooses the default the bench marks for it
 //! ([`super::sweep::SWEEPS`]). `host-sim/tests/default_choice.rs` checks the committed
-//! held-out run against all of them. Cost: one pass over the trials' runs per
-//! controller.
+//! held-out run against all of them.
+//!
+//! Each setting also carries its drops on the aims family by family and at the hand's
+//! limit, and the outcome carries the same rule's choice on aims that leave the trials
+//! at the hand's limit out (when the run has the `constant` sweep that finds them): what
+//! sets the choice apart from trials no grip below 95 % of `N_max` holds. Cost: one pass
+//! over the trials' runs per setting, and one over the trials per `constant` setting to
+//! find those at the hand's limit.
 
 use super::families::N_MAX_N;
 use super::stats::{at_limit, wilson95};

@@ -400,3 +400,42 @@ fn the_rule_also_says_what_it_chooses_without_the_trials_at_the_hands_limit() {
     assert_eq!(c.candidates[2].drops_at_limit, None);
     assert!(c.without_limit.is_none());
 }
+
+#[test]
+fn a_run_of_one_mode_gets_the_rule_over_that_mode() {
+    // Columns: ellipse 1.0, 1.5, table 1.0, 1.5. Table mode alone: its 1.0 drops 5 of
+    // the 50 aims, beyond the bound of 0 (3.56), so the rule takes its 1.5; ellipse's
+    // columns, which would win both ways, are not in the run.
+    let groups = groups([0, 0, 5, 0], [1.0, 1.1, 1.2, 1.3]);
+    let both = choose(&sweeps(), &groups).unwrap();
+    assert_eq!(both.chosen.controller, "softgrip-ellipse");
+    let table = sweeps()[1..].to_vec();
+    let alone = choose(&table, &groups_of(&groups, 2..4)).unwrap();
+    assert_eq!(
+        (alone.chosen.controller.as_str(), alone.chosen.knob_value),
+        ("softgrip-table", 1.5)
+    );
+    assert_eq!(alone.candidates.len(), 2);
+    // No softgrip mode in the run: no choice.
+    let baselines = safety_sweeps([ControllerKind::FixedTorsion, ControllerKind::Box]);
+    assert!(choose(&baselines, &groups).is_none());
+}
+
+/// `groups` with only the runs of columns `cols` (a run that swept fewer controllers).
+fn groups_of(groups: &[FamilyResults], cols: std::ops::Range<usize>) -> Vec<FamilyResults> {
+    groups
+        .iter()
+        .map(|g| FamilyResults {
+            family: g.family,
+            seed: g.seed,
+            results: g
+                .results
+                .iter()
+                .map(|r| TrialResult {
+                    runs: r.runs[cols.clone()].to_vec(),
+                    ..r.clone()
+                })
+                .collect(),
+        })
+        .collect()
+}

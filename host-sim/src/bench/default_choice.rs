@@ -97,17 +97,22 @@ fn counts(family: &str, r: &TrialResult) -> bool {
     r.holdable && (family != "mu-mismatch" || r.sensor)
 }
 
-/// softgrip's default: the rule over the settings of both modes, or `None` when the run
-/// lacks a family or either softgrip controller.
+/// softgrip's default: the rule over the settings of both modes, or of the one mode a run
+/// of a single mode swept (`--controller softgrip-table`: a candidate judged in one mode
+/// gets its choice from the bench itself), or `None` when the run lacks a family or both
+/// softgrip controllers.
 pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
-    choose_among(
-        sweeps,
-        groups,
-        &[
-            ControllerKind::SoftgripEllipse,
-            ControllerKind::SoftgripTable,
-        ],
-    )
+    let modes: Vec<ControllerKind> = [
+        ControllerKind::SoftgripEllipse,
+        ControllerKind::SoftgripTable,
+    ]
+    .into_iter()
+    .filter(|k| sweeps.iter().any(|s| s.controller == *k))
+    .collect();
+    if modes.is_empty() {
+        return None;
+    }
+    choose_among(sweeps, groups, &modes)
 }
 
 /// Each baseline's default: the same rule over that baseline's own settings, for every

@@ -97,21 +97,21 @@ fn counts(family: &str, r: &TrialResult) -> bool {
     r.holdable && (family != "mu-mismatch" || r.sensor)
 }
 
-/// softgrip's default: the rule over the settings of both modes, or of the one mode a run
-/// of a single mode swept (`--controller softgrip-table`: a candidate judged in one mode
-/// gets its choice from the bench itself), or `None` when the run lacks a family or both
-/// softgrip controllers.
+/// softgrip's default: the rule over the settings of the softgrip modes the run swept
+/// (both, or one: a candidate judged in table mode alone gets its choice from the bench
+/// itself), or `None` when the run lacks a family or any softgrip mode.
 pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
-    let modes: Vec<ControllerKind> = [
-        ControllerKind::SoftgripEllipse,
-        ControllerKind::SoftgripTable,
-    ]
-    .into_iter()
-    .filter(|k| sweeps.iter().any(|s| s.controller == *k))
-    .collect();
-    if modes.is_empty() {
-        return None;
-    }
+    let modes: Vec<ControllerKind> = sweeps
+        .iter()
+        .map(|s| s.controller)
+        .filter(|k| {
+            matches!(
+                k,
+                ControllerKind::SoftgripEllipse | ControllerKind::SoftgripTable
+            )
+        })
+        .collect();
+    // With no mode there are no candidates, and `choose_among` gives `None`.
     choose_among(sweeps, groups, &modes)
 }
 

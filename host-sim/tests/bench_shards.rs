@@ -1,7 +1,8 @@
 //! `bench --shard I/N`, `bench merge` and `bench select`: the merged shards write exactly
 //! the files of the whole run, byte for byte, and so do the merged runs of some of its
 //! seeds each, and of some of its controllers each; a merge refuses a missing unit, a
-//! duplicate and shards of different runs, naming the problem.
+//! duplicate and shards of different runs, naming the problem; and `bench rejudge` gives
+//! back a run's own bench.json from its rows.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -327,4 +328,43 @@ fn a_bad_shard_or_seed_list_is_refused_by_name() {
         assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
         assert!(e.contains(key), "{e}");
     }
+}
+
+#[test]
+fn a_rejudged_run_is_the_run_byte_for_byte() {
+    // A run of all five families, whose choices `bench rejudge` rewrites from its rows
+    // alone: after the choices are blanked, it gives back the run's bench.json exactly.
+    let out = tmp("rejudge");
+    let mut args: Vec<&str> = RUN.to_vec();
+    args[1] = "lift-hold,shake,twist,mu-mismatch,faults";
+    args[3] = "2";
+    args[5] = "5";
+    let o = Command::new(exe())
+        .arg("bench")
+        .args(args)
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let path = out.join("bench.json");
+    let written = std::fs::read(&path).unwrap();
+    let mut v: serde_json::Value = serde_json::from_slice(&written).unwrap();
+    assert!(v["default_choice"]["chosen"]["controller"] == "softgrip-table");
+    assert_eq!(v["baseline_default_choices"].as_array().unwrap().len(), 1);
+    v["default_choice"] = serde_json::Value::Null;
+    v["baseline_default_choices"] = serde_json::json!([]);
+    std::fs::write(&path, serde_json::to_string_pretty(&v).unwrap() + "\n").unwrap();
+    assert_ne!(std::fs::read(&path).unwrap(), written);
+    let o = Command::new(exe())
+        .args(["bench", "rejudge"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("softgrip-table@"));
+    assert!(
+        std::fs::read(&path).unwrap() == written,
+        "rejudge changed other bytes"
+    );
+    let _ = std::fs::remove_dir_all(out);
 }

@@ -1,14 +1,16 @@
 //! softgrip's default mode and safety factor, chosen from a bench run on the front of
 //! drops against force, safety first.
 //!
-//! The rule, over every setting (mode, safety factor) of the two softgrip controllers in
-//! a run of all five families:
+//! The rule, over every setting (mode, safety factor) of the softgrip controllers in a
+//! run of all five families:
 //!
-//! 1. **Drops on the aims.** A setting's drops are those the issue's aims count: the
-//!    holdable trials it drops in `lift-hold`, `shake`, `twist` and `faults`, and the
-//!    holdable `mu-mismatch` trials that list the slip sensor (without a sensor a wrong
-//!    μ is beyond what any margin is promised to cover). `n` is the number of such
-//!    trials, the same for every setting.
+//! 1. **Drops.** A setting's drops are the holdable trials it drops, in every family:
+//!    `mu-mismatch` trials without a slip sensor count too. The issue's aims leave those
+//!    out (without a sensor a wrong μ is beyond what any margin is promised to cover),
+//!    but the default is what a user gets who has not tuned it, a hand without a sensor
+//!    included, and a rule that counted the aims alone walked a safer front down to a
+//!    factor that gave up that cover (docs/bench.md, "The rule weighs every holdable
+//!    trial"). `n` is the number of holdable trials, the same for every setting.
 //! 2. **As safe as the safest.** The safest setting drops the fewest, `d₀`. A setting
 //!    counts as safe when its drops are within the Wilson 95 % upper bound of `d₀` in
 //!    `n` (a run of a few hundred trials cannot tell such settings apart).
@@ -22,16 +24,17 @@
 //! ([`super::sweep::SWEEPS`]). `host-sim/tests/default_choice.rs` checks the committed
 //! held-out run against all of them.
 //!
-//! Each setting also carries its drops on the aims family by family and at the hand's
-//! limit, and the outcome carries the same rule's choice on aims that leave the trials
-//! at the hand's limit out (when the run has the `constant` sweep that finds them): what
-//! sets the choice apart from trials no grip below 95 % of `N_max` holds. Cost: one pass
-//! over the trials' runs per setting, and one over the trials per `constant` setting to
-//! find those at the hand's limit.
+//! The rule reads nothing but the pooled rows of `bench.json` ([`Row`]: each family's
+//! `holdable`, `drops_holdable`, `at_limit`, `drops_at_limit` and `force_over_oracle`),
+//! so a written run can be judged again without its trials (`host-sim bench rejudge`).
+//! Each setting also carries its drops family by family and at the hand's limit, and the
+//! outcome carries the same rule's choice without the trials at the hand's limit (when
+//! the run has the `constant` sweep that finds them): what sets the choice apart from
+//! trials no grip below 95 % of `N_max` holds. Cost: one look-up of five rows per
+//! setting.
 
-use super::families::N_MAX_N;
-use super::stats::{at_limit, wilson95};
-use super::sweep::{settings, Sweep, TrialResult};
+use super::stats::{self, wilson95, Row};
+use super::sweep::Sweep;
 use super::FamilyResults;
 use crate::sim::controllers::ControllerKind;
 use serde::Serialize;
@@ -47,7 +50,7 @@ pub struct Candidate {
     /// Its knob's value (the safety factor; the force for `constant`, the floor for
     /// `slip-servo`).
     pub knob_value: f64,
-    /// Its drops on the aims.
+    /// Its drops: holdable trials dropped, in every family.
     pub drops: usize,
     /// Of those, the drops in each family, in the order of [`FAMILIES`].
     pub drops_per_family: [usize; 5],
@@ -59,23 +62,24 @@ pub struct Candidate {
     pub force_over_oracle: f64,
 }
 
-/// The rule's outcome on aims that leave out the trials at the hand's limit.
+/// The rule's outcome without the trials at the hand's limit.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WithoutLimit {
-    /// The trials those aims count.
+    /// The holdable trials short of the hand's limit.
     pub aim_trials: usize,
     /// The fewest drops on them of any setting.
     pub safest_drops: usize,
     /// The most drops that count as safe.
     pub safe_drops_max: f64,
-    /// The setting the rule chooses on them (its `drops` still those on the whole aims).
+    /// The setting the rule chooses on them (its `drops` still those of every holdable
+    /// trial).
     pub chosen: Candidate,
 }
 
 /// The rule's outcome.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Choice {
-    /// The trials the aims count, `n`.
+    /// The holdable trials the rule counts, `n`.
     pub aim_trials: usize,
     /// The fewest drops of any setting, `d₀`.
     pub safest_drops: usize,
@@ -85,75 +89,101 @@ pub struct Choice {
     pub chosen: Candidate,
     /// Every setting, in the sweeps' order.
     pub candidates: Vec<Candidate>,
-    /// The same rule on aims without the trials at the hand's limit, which no grip below
-    /// 95 % of `N_max` holds even from the start (docs/bench.md, "What the `twist` drops
-    /// are"): what sets the choice apart from them. `None` when the run has no `constant`
-    /// sweep to find them.
+    /// The same rule without the trials at the hand's limit, which no grip below 95 % of
+    /// `N_max` holds even from the start (docs/bench.md, "What the `twist` drops are"):
+    /// what sets the choice apart from them. `None` when the run has no `constant` sweep
+    /// to find them.
     pub without_limit: Option<WithoutLimit>,
 }
 
-/// Whether a trial of `family` counts toward the aims.
-fn counts(family: &str, r: &TrialResult) -> bool {
-    r.holdable && (family != "mu-mismatch" || r.sensor)
+/// The rows pooled over the seeds of `groups`, family by family, as `bench.json` holds
+/// them.
+pub fn pooled_rows(sweeps: &[Sweep], groups: &[FamilyResults]) -> Vec<Row> {
+    FAMILIES
+        .iter()
+        .filter(|family| groups.iter().any(|g| g.family == **family))
+        .flat_map(|family| {
+            let results: Vec<_> = groups
+                .iter()
+                .filter(|g| g.family == *family)
+                .flat_map(|g| g.results.iter())
+                .collect();
+            stats::rows(family, None, sweeps, &results)
+        })
+        .collect()
 }
 
 /// softgrip's default: the rule over the settings of the softgrip modes the run swept
 /// (both, or one: a candidate judged in table mode alone gets its choice from the bench
 /// itself), or `None` when the run lacks a family or any softgrip mode.
 pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
-    let modes: Vec<ControllerKind> = sweeps
-        .iter()
-        .map(|s| s.controller)
-        .filter(|k| {
-            matches!(
-                k,
-                ControllerKind::SoftgripEllipse | ControllerKind::SoftgripTable
-            )
-        })
-        .collect();
+    choose_on_rows(&pooled_rows(sweeps, groups))
+}
+
+/// [`choose`] on a run's pooled rows.
+pub fn choose_on_rows(rows: &[Row]) -> Option<Choice> {
+    let softgrip = [
+        ControllerKind::SoftgripEllipse,
+        ControllerKind::SoftgripTable,
+    ];
+    let mut modes: Vec<&str> = Vec::new();
+    for r in rows {
+        if softgrip.iter().any(|k| k.name() == r.controller) && !modes.contains(&&*r.controller) {
+            modes.push(&r.controller);
+        }
+    }
     // With no mode there are no candidates, and `choose_among` gives `None`.
-    choose_among(sweeps, groups, &modes)
+    choose_among(rows, &modes)
 }
 
 /// Each baseline's default: the same rule over that baseline's own settings, for every
 /// baseline the run swept (none without all five families).
 pub fn baseline_choices(sweeps: &[Sweep], groups: &[FamilyResults]) -> Vec<Choice> {
-    sweeps
-        .iter()
-        .filter(|s| !s.controller.is_softgrip())
-        .filter_map(|s| choose_among(sweeps, groups, &[s.controller]))
+    baseline_choices_on_rows(&pooled_rows(sweeps, groups))
+}
+
+/// [`baseline_choices`] on a run's pooled rows.
+pub fn baseline_choices_on_rows(rows: &[Row]) -> Vec<Choice> {
+    let mut baselines: Vec<&str> = Vec::new();
+    for r in rows {
+        let softgrip = r.controller.starts_with("softgrip");
+        if !softgrip && !baselines.contains(&&*r.controller) {
+            baselines.push(&r.controller);
+        }
+    }
+    baselines
+        .into_iter()
+        .filter_map(|b| choose_among(rows, &[b]))
         .collect()
 }
 
-/// The rule over the settings of the controllers `kinds`, or `None` when the run lacks a
-/// family or one of them.
-pub fn choose_among(
-    sweeps: &[Sweep],
-    groups: &[FamilyResults],
-    kinds: &[ControllerKind],
-) -> Option<Choice> {
-    if !FAMILIES
+/// The rule over the settings of the controllers named `controllers`, from a run's
+/// pooled rows, or `None` when the rows lack a family or one of them.
+pub fn choose_among(rows: &[Row], controllers: &[&str]) -> Option<Choice> {
+    let settings: Vec<&Row> = rows
         .iter()
-        .all(|f| groups.iter().any(|g| g.family == *f))
-        || !kinds
-            .iter()
-            .all(|k| sweeps.iter().any(|s| s.controller == *k))
+        .filter(|r| r.family == FAMILIES[0] && controllers.contains(&r.controller.as_str()))
+        .collect();
+    if !controllers
+        .iter()
+        .all(|c| settings.iter().any(|r| r.controller == *c))
     {
         return None;
     }
-    let limits = limits(sweeps, groups);
-    let aim_trials = aims(groups, &limits, false);
-    let candidates: Vec<Candidate> = settings(sweeps)
-        .filter(|(_, sw, _)| kinds.contains(&sw.controller))
-        .map(|(col, sw, v)| candidate(sw, v, col, groups, &limits))
-        .collect();
-    let (safest_drops, safe_drops_max, chosen) =
-        cheapest_safe(&candidates, aim_trials, |c| Some(c.drops))?;
-    let without_limit = limits.iter().flatten().all(Option::is_some).then(|| {
-        let n = aims(groups, &limits, true);
-        cheapest_safe(&candidates, n, |c| Some(c.drops - c.drops_at_limit?)).map(
+    let family_rows: Vec<[&Row; 5]> = settings
+        .iter()
+        .map(|s| of_setting(rows, s))
+        .collect::<Option<_>>()?;
+    let candidates: Vec<Candidate> = family_rows.iter().map(candidate).collect();
+    // Every setting runs the same trials: the first's rows count them.
+    let first = family_rows.first()?;
+    let n: usize = first.iter().map(|r| r.holdable).sum();
+    let (safest_drops, safe_drops_max, chosen) = cheapest_safe(&candidates, n, |c| Some(c.drops))?;
+    let at_limit: Option<usize> = first.iter().map(|r| r.at_limit).sum();
+    let without_limit = at_limit.and_then(|l| {
+        cheapest_safe(&candidates, n - l, |c| Some(c.drops - c.drops_at_limit?)).map(
             |(safest_drops, safe_drops_max, chosen)| WithoutLimit {
-                aim_trials: n,
+                aim_trials: n - l,
                 safest_drops,
                 safe_drops_max,
                 chosen,
@@ -161,41 +191,37 @@ pub fn choose_among(
         )
     });
     Some(Choice {
-        aim_trials,
+        aim_trials: n,
         safest_drops,
         safe_drops_max,
         chosen,
         candidates,
-        without_limit: without_limit.flatten(),
+        without_limit,
     })
 }
 
-/// Whether each trial of each group is at the hand's limit (`None` without a `constant`
-/// sweep).
-fn limits(sweeps: &[Sweep], groups: &[FamilyResults]) -> Vec<Vec<Option<bool>>> {
-    groups
-        .iter()
-        .map(|g| {
-            g.results
-                .iter()
-                .map(|r| at_limit(sweeps, r, N_MAX_N))
-                .collect()
+/// The five families' pooled rows of the setting of `s` (its controller and knob value),
+/// or `None` when one is missing.
+fn of_setting<'a>(rows: &'a [Row], s: &Row) -> Option<[&'a Row; 5]> {
+    let find = |family: &str| {
+        rows.iter().find(|r| {
+            r.family == family
+                && r.seed.is_none()
+                && r.controller == s.controller
+                && r.knob_value == s.knob_value
         })
-        .collect()
+    };
+    Some([
+        find(FAMILIES[0])?,
+        find(FAMILIES[1])?,
+        find(FAMILIES[2])?,
+        find(FAMILIES[3])?,
+        find(FAMILIES[4])?,
+    ])
 }
 
-/// The trials the aims count, leaving out those at the hand's limit when `but_limit`.
-fn aims(groups: &[FamilyResults], limits: &[Vec<Option<bool>>], but_limit: bool) -> usize {
-    groups
-        .iter()
-        .zip(limits)
-        .flat_map(|(g, l)| g.results.iter().zip(l).map(move |(r, l)| (g.family, r, l)))
-        .filter(|(f, r, l)| counts(f, r) && !(but_limit && **l == Some(true)))
-        .count()
-}
-
-/// The rule's steps 2 and 3 over `candidates` with `drops` of each on `n` aim trials:
-/// the fewest drops, the most that count as safe, and the cheapest safe candidate.
+/// The rule's steps 2 and 3 over `candidates` with `drops` of each on `n` trials: the
+/// fewest drops, the most that count as safe, and the cheapest safe candidate.
 fn cheapest_safe(
     candidates: &[Candidate],
     n: usize,
@@ -215,45 +241,16 @@ fn cheapest_safe(
     Some((safest, safe_max, chosen))
 }
 
-/// Setting `value` of `sw`, the runs' column `col`, over every family and seed.
-fn candidate(
-    sw: &Sweep,
-    value: f64,
-    col: usize,
-    groups: &[FamilyResults],
-    limits: &[Vec<Option<bool>>],
-) -> Candidate {
-    let mut drops_per_family = [0; 5];
-    let mut drops_at_limit = Some(0);
-    let mut log_sum = 0.0;
-    for (i, family) in FAMILIES.iter().enumerate() {
-        let (mut ratio, mut n) = (0.0, 0usize);
-        for (g, l) in groups
-            .iter()
-            .zip(limits)
-            .filter(|(g, _)| g.family == *family)
-        {
-            for (r, at_limit) in g.results.iter().zip(l) {
-                let run = &r.runs[col];
-                if run.dropped && counts(family, r) {
-                    drops_per_family[i] += 1;
-                    drops_at_limit = drops_at_limit
-                        .zip(*at_limit)
-                        .map(|(d, at)| d + usize::from(at));
-                }
-                ratio += run.mean_force_n / r.oracle_mean_n;
-                n += 1;
-            }
-        }
-        // The family's mean force over the oracle's, as its table row gives it.
-        log_sum += (ratio / n.max(1) as f64).ln();
-    }
+/// One setting from its five families' pooled rows.
+fn candidate(rows: &[&Row; 5]) -> Candidate {
+    let drops_per_family = rows.map(|r| r.drops_holdable);
+    let log_sum: f64 = rows.iter().map(|r| r.force_over_oracle.ln()).sum();
     Candidate {
-        controller: sw.controller.name().to_string(),
-        knob_value: value,
+        controller: rows[0].controller.clone(),
+        knob_value: rows[0].knob_value,
         drops: drops_per_family.iter().sum(),
         drops_per_family,
-        drops_at_limit,
+        drops_at_limit: rows.iter().map(|r| r.drops_at_limit).sum(),
         force_over_oracle: (log_sum / FAMILIES.len() as f64).exp(),
     }
 }
@@ -261,8 +258,8 @@ fn candidate(
 /// The rule's lines for people.
 pub fn lines(c: &Choice) -> String {
     let mut out = format!(
-        "default choice (safety first on the front): the fewest drops on the aims are {} of \
-         {}; settings within {:.1} drops count as safe; the cheapest of them is {}@{} \
+        "default choice (safety first on the front): the fewest drops of holdable trials are \
+         {} of {}; settings within {:.1} drops count as safe; the cheapest of them is {}@{} \
          ({} drops, {:.3} x the oracle's force, geometric mean over the families)",
         c.safest_drops,
         c.aim_trials,
@@ -291,8 +288,8 @@ pub fn lines(c: &Choice) -> String {
 /// One line for a baseline's choice.
 pub fn baseline_line(c: &Choice) -> String {
     format!(
-        "{}'s default by the same rule: {}@{} ({} drops on the aims, the fewest {}, safe \
-         within {:.1}; {:.3} x the oracle's force)",
+        "{}'s default by the same rule: {}@{} ({} drops of holdable trials, the fewest {}, \
+         safe within {:.1}; {:.3} x the oracle's force)",
         c.chosen.controller,
         c.chosen.controller,
         c.chosen.knob_value,
@@ -301,4 +298,24 @@ pub fn baseline_line(c: &Choice) -> String {
         c.safe_drops_max,
         c.chosen.force_over_oracle
     )
+}
+
+/// Judges a written `bench.json` again by this build's rule: rewrites its
+/// `default_choice` and `baseline_default_choices` from its pooled `rows`, leaving every
+/// other byte as it was, and returns the rule's lines. Cost: one read and one write of
+/// the file.
+pub fn rejudge(path: &std::path::Path) -> Result<String, String> {
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let text = std::fs::read_to_string(path).map_err(|e| at(&e))?;
+    let mut v: serde_json::Value = serde_json::from_str(&text).map_err(|e| at(&e))?;
+    let rows: Vec<Row> = serde_json::from_value(v["rows"].clone()).map_err(|e| at(&e))?;
+    let choice = choose_on_rows(&rows);
+    let baselines = baseline_choices_on_rows(&rows);
+    v["default_choice"] = serde_json::to_value(&choice).map_err(|e| at(&e))?;
+    v["baseline_default_choices"] = serde_json::to_value(&baselines).map_err(|e| at(&e))?;
+    let out = serde_json::to_string_pretty(&v).map_err(|e| at(&e))?;
+    std::fs::write(path, out + "\n").map_err(|e| at(&e))?;
+    let mut lines: Vec<String> = choice.iter().map(self::lines).collect();
+    lines.extend(baselines.iter().map(baseline_line));
+    Ok(lines.join("\n"))
 }

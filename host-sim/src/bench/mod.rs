@@ -321,11 +321,11 @@ pub fn write_outputs(
         checks.push(check);
         pooled.extend(rows);
     }
-    let choice = default_choice::choose(&opts.sweeps, groups);
+    let choice = default_choice::choose_on_rows(&pooled);
     if let Some(c) = &choice {
         show(&format!("{}\n", default_choice::lines(c)));
     }
-    let baseline_choices = default_choice::baseline_choices(&opts.sweeps, groups);
+    let baseline_choices = default_choice::baseline_choices_on_rows(&pooled);
     for c in &baseline_choices {
         show(&format!("{}\n", default_choice::baseline_line(c)));
     }

@@ -6,10 +6,10 @@ use super::families::N_MAX_N;
 use super::sweep::{settings, RunRow, Sweep, TrialResult};
 use crate::sim::controllers::ControllerKind;
 use crate::sim::run::DROP_DISTANCE_M;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One row of `bench.json`: one family, controller and knob value over all trials.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     /// Family.
     pub family: String,

@@ -90,6 +90,18 @@ pub enum ShardCommand {
     /// of the given controllers: to pool the controllers a change left alone with a
     /// rerun of the one it changed (`bench merge`).
     Select(SelectArgs),
+    /// Judges written runs again by this build's rule: rewrites each bench.json's
+    /// default_choice and baseline_default_choices from its pooled rows, leaving every
+    /// other byte as it was (a run judged before the rule changed).
+    Rejudge(RejudgeArgs),
+}
+
+/// Arguments of `host-sim bench rejudge`.
+#[derive(Debug, Args)]
+pub struct RejudgeArgs {
+    /// The bench.json files.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
 }
 
 /// Arguments of `host-sim bench select`.
@@ -256,6 +268,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     match &args.command {
         Some(ShardCommand::Merge(m)) => return merge(m),
         Some(ShardCommand::Select(a)) => return select(a),
+        Some(ShardCommand::Rejudge(a)) => return rejudge(a),
         None => {}
     }
     let opts = options(args)?;
@@ -285,6 +298,15 @@ fn select(a: &SelectArgs) -> Result<(), CliError> {
     let written = bench::shard::select(&a.shards, &names, &a.out).map_err(CliError::Failed)?;
     for p in written {
         println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+/// `host-sim bench rejudge`.
+fn rejudge(a: &RejudgeArgs) -> Result<(), CliError> {
+    for f in &a.files {
+        let lines = bench::default_choice::rejudge(f).map_err(CliError::Failed)?;
+        println!("{lines}\nwrote {}", f.display());
     }
     Ok(())
 }

@@ -167,15 +167,15 @@ impl Bristles {
                 continue;
             }
             let (mut sx, mut sy) = (dx - self.anchor_x_m[i], dy - self.anchor_y_m[i]);
-            let stretch = sx.hypot(sy);
             let mu = if self.sliding[i] {
                 patch.mu_kinetic[i]
             } else {
                 patch.mu_static[i]
             };
             let limit = mu * p / self.k_pa_per_m;
-            let slides = stretch > limit;
-            if slides {
+            let beyond = stretch_beyond(sx, sy, limit);
+            let slides = beyond.is_some();
+            if let Some(stretch) = beyond {
                 let keep = patch.mu_kinetic[i] * p / self.k_pa_per_m / stretch;
                 if tangent {
                     let (ex, ey) = (sx / stretch, sy / stretch);
@@ -215,6 +215,21 @@ impl Bristles {
     }
 }
 
+/// The stretch `|(sx, sy)|` \[m\] when it exceeds `limit` \[m\] (the bristle slides), else
+/// `None`: the same answer as `sx.hypot(sy) > limit`, bit for bit, with the `hypot` (a
+/// third of a brush step's time) skipped when the squares settle it. They do when
+/// `sx² + sy²` lies below `limit²` by more than `1e-9` of it, far beyond their few ulps of
+/// rounding (and `limit > 1e-100` keeps `limit²` a normal number); a NaN or an overflow
+/// goes to the `hypot`, as before.
+#[inline]
+fn stretch_beyond(sx: f64, sy: f64, limit: f64) -> Option<f64> {
+    if limit > 1e-100 && sx * sx + sy * sy < limit * limit * (1.0 - 1e-9) {
+        return None;
+    }
+    let stretch = sx.hypot(sy);
+    (stretch > limit).then_some(stretch)
+}
+
 /// Adds `ka·BᵀPB` to the tangent's upper triangle, `P = [[a, b], [b, d]]` given as
 /// `[a, b, d]`, `B = [[1, 0, −y], [0, 1, x]]`.
 fn add_tangent(t: &mut [f64; 6], ka: f64, [a, b, d]: [f64; 3], x: f64, y: f64) {
@@ -224,4 +239,66 @@ fn add_tangent(t: &mut [f64; 6], ka: f64, [a, b, d]: [f64; 3], x: f64, y: f64) {
     t[3] += ka * d;
     t[4] += ka * (x * d - y * b);
     t[5] += ka * (y * y * a - 2.0 * x * y * b + x * x * d);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stretch_beyond;
+    use rand::{Rng, SeedableRng};
+
+    /// What `update` decided before the squares were tried: the `hypot` alone.
+    fn by_hypot(sx: f64, sy: f64, limit: f64) -> Option<f64> {
+        let stretch = sx.hypot(sy);
+        (stretch > limit).then_some(stretch)
+    }
+
+    #[test]
+    fn the_squares_never_change_the_answer_of_the_hypot() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let mut same = |sx: f64, sy: f64, limit: f64| {
+            let (a, b) = (stretch_beyond(sx, sy, limit), by_hypot(sx, sy, limit));
+            assert!(
+                a.map(f64::to_bits) == b.map(f64::to_bits),
+                "{sx:e} {sy:e} {limit:e}: {a:?} against {b:?}"
+            );
+        };
+        for _ in 0..200_000 {
+            let limit = 10f64.powf(rng.random_range(-12.0..2.0));
+            let angle = rng.random_range(0.0..std::f64::consts::TAU);
+            // Stretches around the limit, most within a few ulps of it.
+            let ulps = rng.random_range(-64i64..64);
+            let r = f64::from_bits((limit.to_bits() as i64 + ulps) as u64)
+                * if rng.random_bool(0.5) {
+                    1.0
+                } else {
+                    rng.random_range(0.0..2.0)
+                };
+            same(r * angle.cos(), r * angle.sin(), limit);
+            same(r, 0.0, limit);
+            same(0.0, -r, limit);
+        }
+        for limit in [
+            0.0,
+            -1.0,
+            1e-101,
+            1e-200,
+            f64::MIN_POSITIVE,
+            f64::NAN,
+            f64::INFINITY,
+        ] {
+            for s in [
+                0.0,
+                1e-160,
+                1e-101,
+                1.0,
+                1e160,
+                f64::NAN,
+                f64::INFINITY,
+                -f64::INFINITY,
+            ] {
+                same(s, s, limit);
+                same(s, 0.0, limit);
+            }
+        }
+    }
 }

@@ -255,7 +255,7 @@ mod tests {
     #[test]
     fn the_squares_never_change_the_answer_of_the_hypot() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-        let mut same = |sx: f64, sy: f64, limit: f64| {
+        let same = |sx: f64, sy: f64, limit: f64| {
             let (a, b) = (stretch_beyond(sx, sy, limit), by_hypot(sx, sy, limit));
             assert!(
                 a.map(f64::to_bits) == b.map(f64::to_bits),

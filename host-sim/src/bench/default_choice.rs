@@ -122,16 +122,12 @@ pub fn choose(sweeps: &[Sweep], groups: &[FamilyResults]) -> Option<Choice> {
 
 /// [`choose`] on a run's pooled rows.
 pub fn choose_on_rows(rows: &[Row]) -> Option<Choice> {
-    let softgrip = [
-        ControllerKind::SoftgripEllipse,
-        ControllerKind::SoftgripTable,
-    ];
-    let mut modes: Vec<&str> = Vec::new();
-    for r in rows {
-        if softgrip.iter().any(|k| k.name() == r.controller) && !modes.contains(&&*r.controller) {
-            modes.push(&r.controller);
-        }
-    }
+    let modes = named(rows, |k| {
+        matches!(
+            k,
+            ControllerKind::SoftgripEllipse | ControllerKind::SoftgripTable
+        )
+    });
     // With no mode there are no candidates, and `choose_among` gives `None`.
     choose_among(rows, &modes)
 }
@@ -144,17 +140,22 @@ pub fn baseline_choices(sweeps: &[Sweep], groups: &[FamilyResults]) -> Vec<Choic
 
 /// [`baseline_choices`] on a run's pooled rows.
 pub fn baseline_choices_on_rows(rows: &[Row]) -> Vec<Choice> {
-    let mut baselines: Vec<&str> = Vec::new();
-    for r in rows {
-        let softgrip = r.controller.starts_with("softgrip");
-        if !softgrip && !baselines.contains(&&*r.controller) {
-            baselines.push(&r.controller);
-        }
-    }
-    baselines
+    named(rows, |k| !k.is_softgrip())
         .into_iter()
         .filter_map(|b| choose_among(rows, &[b]))
         .collect()
+}
+
+/// The controllers of `rows` that `pick` takes, each once, in the rows' order.
+fn named(rows: &[Row], pick: impl Fn(ControllerKind) -> bool) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for r in rows {
+        let name = r.controller.as_str();
+        if ControllerKind::from_name(name).is_some_and(&pick) && !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    names
 }
 
 /// The rule over the settings of the controllers named `controllers`, from a run's

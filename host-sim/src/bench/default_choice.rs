@@ -55,7 +55,7 @@ pub struct Candidate {
     /// Of those, the drops in each family, in the order of [`FAMILIES`].
     pub drops_per_family: [usize; 5],
     /// Of those, the drops of trials at the hand's limit
-    /// ([`stats::at_limit`](super::stats::at_limit)); `None` when the run has no
+    /// ([`stats::at_limit`]); `None` when the run has no
     /// `constant` sweep to judge them by.
     pub drops_at_limit: Option<usize>,
     /// The geometric mean over the families of the mean force over the oracle's.

@@ -217,7 +217,7 @@ impl Bristles {
 
 /// The stretch `|(sx, sy)|` \[m\] when it exceeds `limit` \[m\] (the bristle slides), else
 /// `None`: the same answer as `sx.hypot(sy) > limit`, bit for bit, with the `hypot` (the
-/// costliest call of a brush step under `perf`) skipped when the squares settle it. They do when
+/// costliest libm call of a brush step under `perf`) skipped when the squares settle it. They do when
 /// `sx² + sy²` lies below `limit²` by more than `1e-9` of it, far beyond their few ulps of
 /// rounding (and `limit > 1e-100` keeps `limit²` a normal number); a NaN or an overflow
 /// goes to the `hypot`, as before.

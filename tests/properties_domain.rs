@@ -514,10 +514,10 @@ fn table_mode_below_the_grid() {
     };
     let c = Controller::<f64>::new(cfg).unwrap();
     let (f, m) = (6.793e-5, 2.981e-7);
-    let first = c.required_force(f, m, 1.0).unwrap().force_n;
+    let first = c.slip_force(f, m).unwrap().force_n;
     let mut fell = 0.0f64;
     for grow in [1.0, 1.5, 2.0, 4.0, 10.0] {
-        let n = c.required_force(f * grow, m, 1.0).unwrap().force_n;
+        let n = c.slip_force(f * grow, m).unwrap().force_n;
         let exact = exact_required(&cfg, f * grow, m, 1.0);
         assert!(
             n >= exact && n < cfg.n_min_n,

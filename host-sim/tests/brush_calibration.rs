@@ -82,7 +82,7 @@ fn held_out(rig: &dyn Rig, ctl: &Controller<f64, Libm>, seed: u64) -> Outcome {
         let Some((f, m)) = rig.slip_onset(normal, theta.cos(), theta.sin() * 2e-3) else {
             continue;
         };
-        let n_slip = ctl.required_force(f, m, 1.0).unwrap().force_n;
+        let n_slip = ctl.slip_force(f, m).unwrap().force_n;
         let ratio = n_slip / normal;
         worst = worst.max(1.0 - ratio);
         sum += ratio;

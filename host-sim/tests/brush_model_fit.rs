@@ -72,7 +72,7 @@ impl Rules {
 
     /// `[table, ellipse, fixed-torsion, box]`: each rule's force for `(f, m)`, over `n`.
     fn ratios(&self, f: f64, m: f64, n: f64) -> [f64; 4] {
-        let solve = |c: &Controller<f64, Libm>| c.required_force(f, m, 1.0).unwrap().force_n;
+        let solve = |c: &Controller<f64, Libm>| c.slip_force(f, m).unwrap().force_n;
         let (mu, arm) = (self.beliefs.cone_mu, self.beliefs.torsion_arm_m);
         [
             solve(&self.table) / n,

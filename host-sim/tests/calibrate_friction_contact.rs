@@ -68,7 +68,7 @@ fn pure_ratios(cal: &Calibration, c: &Case) -> Vec<(f64, f64)> {
         ..ControllerConfig::DEFAULT
     })
     .unwrap();
-    let ask = |f: f64, m: f64, n: f64| ctl.required_force(f, m, 1.0).unwrap().force_n / n;
+    let ask = |f: f64, m: f64, n: f64| ctl.slip_force(f, m).unwrap().force_n / n;
     FORCES_N
         .iter()
         .map(|&n| {

@@ -102,7 +102,11 @@ class Controller:
         (Rust's take_over_from)."""
     def reset(self) -> None: ...
     def required_force(self, ft: float, mn: float, safety: Optional[float] = None) -> Optional[float]:
-        """N_req [N] of a load without touching the state (safety=1: N_slip)."""
+        """N_req [N] of a load without touching the state: what the tick asks of a steady
+        load at safety (the configured one by default); a round patch's moment carries
+        a factor of 1.5 on top of it."""
+    def slip_force(self, ft: float, mn: float) -> Optional[float]:
+        """N_slip [N] of a load without touching the state (no safety factor)."""
     def utilisation(self, ft: float, mn: float, normal_force: float) -> Optional[float]: ...
     @property
     def command_n(self) -> float: ...

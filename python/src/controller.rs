@@ -222,11 +222,19 @@ impl Controller {
         self.inner.reset();
     }
 
-    /// `N_req` [N] of a load without touching the state (`safety=1` gives `N_slip`).
+    /// `N_req` [N] of a load without touching the state: what the tick asks of a steady
+    /// load at `safety` (the configured one by default); a round patch's moment carries
+    /// the core's `DISC_TORSION_SAFETY_FACTOR` on top of it.
     #[pyo3(signature = (ft, mn, safety=None))]
     fn required_force(&self, ft: f64, mn: f64, safety: Option<f64>) -> Option<f64> {
         let s = safety.unwrap_or(self.inner.config().safety);
-        self.inner.required_force(ft, mn, s).map(|r| r.force_n)
+        self.inner.tick_required_force(ft, mn, s).map(|r| r.force_n)
+    }
+
+    /// `N_slip` [N] of a load without touching the state: the normal force at which the
+    /// model's contact starts to slip (no safety factor).
+    fn slip_force(&self, ft: f64, mn: f64) -> Option<f64> {
+        self.inner.slip_force(ft, mn).map(|r| r.force_n)
     }
 
     /// Utilisation of a load at a normal force, without touching the state.

@@ -123,10 +123,10 @@ pub(crate) fn required_force<'py>(
     for (&f0, &m0) in ft.iter().zip(&mn) {
         let (f, m) = (f0.abs(), m0.abs());
         let req = ctl
-            .required_force(f, m, cfg.safety)
+            .tick_required_force(f, m, cfg.safety)
             .ok_or_else(none)?
             .force_n;
-        let slip = ctl.required_force(f, m, 1.0).ok_or_else(none)?.force_n;
+        let slip = ctl.slip_force(f, m).ok_or_else(none)?.force_n;
         let command = req.max(cfg.n_min_n).min(cfg.n_max_n);
         let u = ctl.utilisation(f, m, command).ok_or_else(none)?;
         let status = if req > cfg.n_max_n {

@@ -45,7 +45,9 @@ def test_tick_matches_required_force_and_status_fields():
     assert st.command_n == cmd == c.command_n
     # The pure rule, with the same load (|f_t| of the two components).
     assert st.required_n == pytest.approx(c.required_force(math.hypot(1.0, 0.2), 0.004), rel=1e-12)
-    assert st.n_slip_n == pytest.approx(c.required_force(math.hypot(1.0, 0.2), 0.004, 1.0), rel=1e-12)
+    assert st.n_slip_n == pytest.approx(c.slip_force(math.hypot(1.0, 0.2), 0.004), rel=1e-12)
+    # On a hemicylinder, N_slip is N_req at a safety factor of 1.
+    assert c.slip_force(1.0, 0.004) == c.required_force(1.0, 0.004, 1.0)
     assert st.n_slip_n < st.required_n
     assert st.mu_estimate == 0.8 and st.margin == 1.0 and not st.fault_active
     assert "TickStatus(" in repr(st)
@@ -145,3 +147,15 @@ def test_bad_measurements_are_faults_not_exceptions():
     assert st.status == "ok"
     _, st = c.tick(1.0, 0.0, DT)  # the same timestamp again
     assert st.status == "stale_input"
+
+
+def test_a_round_patchs_moment_carries_its_own_factor():
+    # The tick on a hemisphere asks for (s f_t, 1.5 s m_n): more than the plain rule under
+    # a moment, the same under a force alone; N_slip stays the model's own.
+    c = softgrip.Controller(shape="disc")
+    _, st = c.tick((1.0, 0.0), 0.004, DT)
+    assert st.required_n == pytest.approx(c.required_force(1.0, 0.004), rel=1e-12)
+    assert st.n_slip_n == pytest.approx(c.slip_force(1.0, 0.004), rel=1e-12)
+    assert c.required_force(1.0, 0.004, 1.0) > c.slip_force(1.0, 0.004)
+    assert c.required_force(1.0, 0.0, 1.0) == c.slip_force(1.0, 0.0)
+

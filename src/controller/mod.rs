@@ -15,7 +15,10 @@ pub use capacity::{
     MAX_FORCE_NODES, MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32, MAX_TABLE_SAMPLES,
     UTILISATION_MAX,
 };
-pub use config::{Checked, ControllerConfig, FingerShape, Mode, SkewParams, WireMaxLen};
+pub use config::{
+    Checked, ControllerConfig, FingerShape, Mode, SkewParams, WireMaxLen,
+    DISC_TORSION_SAFETY_FACTOR,
+};
 pub use math::{Libm, Micromath, TickMath};
 pub use slip::SlipSignal;
 pub use status::Status;

@@ -141,6 +141,7 @@ pub struct Controller<T, M = Libm> {
     safety: T,
     n_min: T,
     n_max: T,
+    torsion_factor: T,
     rise_step: T,
     fall_step: T,
     fault_force: T,
@@ -193,8 +194,10 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     }
 
     /// `N_req` for a load, without touching the controller's state: the pure rule of
-    /// docs/model.md. `safety` scales the load (1 gives `N_slip`). Non-finite inputs give
-    /// `None`.
+    /// docs/model.md, the model's requirement of `(s·f_t, s·m_n)` at the configured `μ`.
+    /// `safety` scales the load (1 gives `N_slip`, as [`Self::slip_force`] does). The tick
+    /// asks the same of a hemicylinder; of a round patch it asks
+    /// [`Self::tick_required_force`]. Non-finite inputs give `None`. Cost: one solve.
     pub fn required_force(
         &self,
         tangential_force_n: T,
@@ -207,6 +210,39 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         }
         let s = safety.abs() * self.inv_mu;
         Some(self.capacity.required_force::<M>(f * s, m * s))
+    }
+
+    /// `N_req` for a load as the tick asks it of a steady load at safety factor `safety`
+    /// (no slip signal, the configured `μ`), without touching the controller's state: the
+    /// model's requirement of `(s·f_t, s·β·m_n)`, `β` being
+    /// [`DISC_TORSION_SAFETY_FACTOR`](super::DISC_TORSION_SAFETY_FACTOR) on a round patch
+    /// and 1 on a hemicylinder (where it is [`Self::required_force`]). Non-finite inputs
+    /// give `None`. Cost: one solve.
+    pub fn tick_required_force(
+        &self,
+        tangential_force_n: T,
+        torsional_moment_nm: T,
+        safety: T,
+    ) -> Option<Solution<T>> {
+        self.required_force(
+            tangential_force_n,
+            torsional_moment_nm * self.torsion_factor,
+            safety,
+        )
+    }
+
+    /// `N_slip` for a load, without touching the controller's state: the normal force at
+    /// which the model's contact starts to slip under `(f_t, m_n)` at the configured `μ`
+    /// (no safety factor, on either shape). Non-finite inputs give `None`. Cost: one solve.
+    pub fn slip_force(&self, tangential_force_n: T, torsional_moment_nm: T) -> Option<Solution<T>> {
+        let (f, m) = (tangential_force_n.abs(), torsional_moment_nm.abs());
+        if !(f.is_finite() && m.is_finite()) {
+            return None;
+        }
+        Some(
+            self.capacity
+                .required_force::<M>(f * self.inv_mu, m * self.inv_mu),
+        )
     }
 
     /// Utilisation of a load at normal force `normal_force_n` (no safety factor), without
@@ -410,9 +446,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             .capacity
             .required_force_near::<M>(f, mz, self.slip_node);
         self.slip_node = slip.node;
-        let req = self
-            .capacity
-            .required_force_scaled::<M>(f, mz, &slip, safety);
+        let req =
+            self.capacity
+                .required_force_scaled::<M>(f, mz * self.torsion_factor, &slip, safety);
         let status = if req.force_n > self.n_max {
             Status::Saturated
         } else {

@@ -125,9 +125,11 @@ impl RequiredForceArgs {
 /// The answer, as `--format json` prints it.
 #[derive(Debug, Serialize)]
 pub struct RequiredForce {
-    /// `N_req(s)` \[N\].
+    /// `N_req(s)` as the tick asks it of this steady load (a round patch's moment carries
+    /// `DISC_TORSION_SAFETY_FACTOR` on top of `s`) \[N\].
     pub normal_force: f64,
-    /// `N_slip = N_req(1)` \[N\].
+    /// `N_slip`, the force at which the contact starts to slip (`N_req(1)` on a
+    /// hemicylinder) \[N\].
     pub n_slip: f64,
     /// The safety factor `s` of `normal_force` (the table output prints it; not in the
     /// JSON, whose fields are the answer's).
@@ -135,7 +137,8 @@ pub struct RequiredForce {
     pub safety: f64,
     /// Contact half-width at `normal_force` \[m\].
     pub a: f64,
-    /// Utilisation of the (unscaled) load at `command`: `1/s` unless the grid clamps.
+    /// Utilisation of the (unscaled) load at `command`: `1/s` on a hemicylinder unless the
+    /// grid clamps (less on a round patch under a moment).
     pub utilisation: f64,
     /// `ok`, or `saturated` when `normal_force > n_max`.
     pub status: &'static str,
@@ -273,10 +276,10 @@ fn compute<T: Real, M: TickMath<T>>(
     let (f, m) = (T::of(ft), T::of(mn));
     let fail = || CliError::Failed("the solver returned no answer".into());
     let req = ctl
-        .required_force(f, m, T::of(cfg.safety))
+        .tick_required_force(f, m, T::of(cfg.safety))
         .ok_or_else(fail)?
         .force_n;
-    let slip = ctl.required_force(f, m, T::one()).ok_or_else(fail)?.force_n;
+    let slip = ctl.slip_force(f, m).ok_or_else(fail)?.force_n;
     let command = req.max(T::of(cfg.n_min_n)).min(T::of(cfg.n_max_n));
     let utilisation = ctl.utilisation(f, m, command).ok_or_else(fail)?;
     let contact = ContactSize::<f64>::new(cfg.c_m_per_n_gamma, cfg.gamma)
@@ -314,8 +317,9 @@ fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError
     let surface = ExactSurface::new(finger, usize::from(cfg.quadrature_order), 1e-13, 1e-12)
         .map_err(CliError::Failed)?;
     let s = cfg.safety / cfg.mu;
+    let torsion = cfg.shape.torsion_safety_factor();
     Ok(surface
-        .required_in(Rule::Exact, ft * s, mn * s, 1e-12, 1e12)
+        .required_in(Rule::Exact, ft * s, mn * s * torsion, 1e-12, 1e12)
         .0)
 }
 

@@ -123,6 +123,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             safety: T::one(),
             n_min: T::zero(),
             n_max: T::zero(),
+            torsion_factor: T::one(),
             rise_step: T::zero(),
             fall_step: T::zero(),
             fault_force: T::zero(),
@@ -197,6 +198,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.safety = T::of(config.safety);
         self.n_min = T::of(config.n_min_n);
         self.n_max = T::of(config.n_max_n);
+        self.torsion_factor = T::of(config.shape.torsion_safety_factor());
         self.rise_step = T::of(config.rise_rate_n_per_s * config.tick_period_s);
         self.fall_step = T::of(config.fall_rate_n_per_s * config.tick_period_s);
         self.fault_force = T::of(config.fault_force_n);

@@ -794,7 +794,8 @@ fn meas(f: f64, m: f64, n: f64, t: u64) -> Measurement<f64> {
 /// Zero loads ask for nothing, hold with utilisation 0 and let the command relax to `N_min`;
 /// a load on no normal force gets the utilisation cap; loads no force up to `N_max` can hold
 /// are `Saturated` at `N_max` with the above-grid closed form `|(F/A, M/(R(N_max)·B))|`
-/// (ellipse mode, with its inscribed semi-axes `(A, B)`) as their finite requirement, up to
+/// (ellipse mode, with its inscribed semi-axes `(A, B)`; a round patch's `M` times its
+/// `DISC_TORSION_SAFETY_FACTOR`) as their finite requirement, up to
 /// the largest loads the sensor range admits.
 #[test]
 fn zero_loads_and_loads_no_force_can_hold() {
@@ -885,7 +886,9 @@ fn zero_loads_and_loads_no_force_can_hold() {
                 let (sf, sm) = demand_scale(&c);
                 // (Times the tick's margin: a load held steady gets the steady load's
                 // factor; the safety asked is never below 1.)
+                // A round patch's moment carries its own factor on top.
                 let safety = (cfg.safety * o.margin).max(1.0);
+                let m = m * cfg.shape.torsion_safety_factor();
                 let want = safety * (f * sf / cfg.mu).hypot(m * sm / (cfg.mu * r));
                 assert!(
                     (o.required_n / want - 1.0).abs() < 1e-14,

@@ -43,7 +43,7 @@ FINGER = dict(
 # The scene's safety factor: it fixes the operating force N* (softgrip's ellipse-mode
 # N_req at 1.3, as the scene was first defined, so the scene does not move with the
 # library's defaults) and is the Coulomb baseline's margin. softgrip itself runs at its
-# own defaults (table mode at 1.75, chosen on the bench's held-out seeds).
+# own defaults (ellipse mode at 1.35, chosen on the bench's held-out seeds).
 SAFETY = 1.3
 SCENE_MODE = "ellipse"
 N_MIN, N_MAX = 0.2, 20.0

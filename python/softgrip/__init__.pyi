@@ -44,7 +44,7 @@ def required_force(
     shape: Literal["rect", "disc"] = "rect",
     half_length_m: float = 0.01,
     k: float = 2.0,
-    safety: float = 1.3,
+    safety: float = 1.35,
     mode: Literal["ellipse", "table"] = "ellipse",
     skew: SkewArg = None,
     n_min_n: float = 0.2,

@@ -62,7 +62,7 @@ class Controller:
         c_m_per_n_gamma: float = 2.5e-3,
         gamma: float = 0.5,
         half_length_m: float = 0.01,
-        safety: float = 1.3,
+        safety: float = 1.35,
         n_min_n: float = 0.2,
         n_max_n: float = 20.0,
         rise_rate_n_per_s: float = 400.0,
@@ -128,7 +128,7 @@ def fls(
 def required_force(
     ft: list[float], mn: list[float], *, mu: float = 0.8, c_m_per_n_gamma: float = 2.5e-3,
     gamma: float = 0.5, shape: str = "rect", half_length_m: float = 0.01, k: float = 2.0,
-    safety: float = 1.3, mode: str = "ellipse", skew: SkewArg = None, n_min_n: float = 0.2,
+    safety: float = 1.35, mode: str = "ellipse", skew: SkewArg = None, n_min_n: float = 0.2,
     n_max_n: float = 20.0,
 ) -> dict[str, Any]: ...
 def default_config() -> dict[str, Any]: ...

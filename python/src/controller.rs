@@ -106,10 +106,10 @@ impl Controller {
     // config.rs): tests/test_vocabulary.py checks it against `CONFIG_FIELDS` and
     // `default_config()`, so a field missing here fails there.
     #[pyo3(text_signature = "(*, mu=0.8, shape='rect', k=2.0, skew=None, \
-        c_m_per_n_gamma=0.0025, gamma=0.5, half_length_m=0.01, safety=1.75, n_min_n=0.2, \
+        c_m_per_n_gamma=0.0025, gamma=0.5, half_length_m=0.01, safety=1.35, n_min_n=0.2, \
         n_max_n=20.0, rise_rate_n_per_s=400.0, fall_rate_n_per_s=20.0, tick_period_s=0.001, \
         stale_timeout_s=0.02, fault_force_n=10.0, force_range_n=100.0, \
-        moment_range_nm=2.0, mode='table', force_nodes=48, quadrature_order=28, \
+        moment_range_nm=2.0, mode='ellipse', force_nodes=48, quadrature_order=28, \
         table_samples=48, aspect_count=8, actuator_lag_s=0.0, actuator_slew_n_per_s=1e999, \
         initial_force_n=None)")]
     fn new(

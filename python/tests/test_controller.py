@@ -13,9 +13,9 @@ def test_defaults_are_the_rust_defaults():
     d = softgrip.default_config()
     assert set(d) == set(softgrip.CONFIG_FIELDS)
     assert d["mu"] == 0.8 and d["shape"] == "rect" and d["k"] == 2.0 and d["skew"] is None
-    assert d["safety"] == 1.75 and d["n_min_n"] == 0.2 and d["n_max_n"] == 20.0
+    assert d["safety"] == 1.35 and d["n_min_n"] == 0.2 and d["n_max_n"] == 20.0
     assert d["rise_rate_n_per_s"] == 400.0 and d["fall_rate_n_per_s"] == 20.0
-    assert d["mode"] == "table" and d["force_nodes"] == 48
+    assert d["mode"] == "ellipse" and d["force_nodes"] == 48
     assert math.isinf(d["actuator_slew_n_per_s"])
     assert softgrip.Controller().config == d
 

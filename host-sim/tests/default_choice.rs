@@ -122,8 +122,8 @@ fn render(held: &Value) -> String {
     );
     out += "| safety | ellipse: drops, force/oracle | table: drops, force/oracle |\n";
     out += "| ---: | ---: | ---: |\n";
-    for k in 0..=12 {
-        let s = 1.4 + 0.05 * f64::from(k);
+    for k in 0..=15 {
+        let s = 1.25 + 0.05 * f64::from(k);
         let cell = |mode: &str| {
             find(mode, s).map_or("–".to_string(), |x| {
                 format!(
@@ -160,13 +160,14 @@ fn render(held: &Value) -> String {
 }
 
 /// The block's paragraph on the trials at the hand's limit: the rule without them, and
-/// table mode's drops family by family.
+/// the chosen mode's drops family by family.
 fn without_limit<'a>(c: &Value, find: &impl Fn(&str, f64) -> Option<&'a Value>) -> String {
     let w = &c["without_limit"];
+    let mode = c["chosen"]["controller"].as_str().unwrap();
     let mut out = format!(
         "\nOf the choice's {} drops, {} are trials at the hand's limit. Without the {} \
          trials at the hand's limit, the fewest drops are {}, settings within {:.1} count as \
-         safe, and the rule chooses **{} at {}** ({:.3} ×). Table mode's drops, family by \
+         safe, and the rule chooses **{} at {}** ({:.3} ×). {mode}'s drops, family by \
          family:\n\n\
          | safety | `lift-hold` | `shake` | `twist` | `mu-mismatch` | `faults` | \
          of them at the hand's limit |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
@@ -179,9 +180,9 @@ fn without_limit<'a>(c: &Value, find: &impl Fn(&str, f64) -> Option<&'a Value>) 
         w["chosen"]["knob_value"],
         w["chosen"]["force_over_oracle"].as_f64().unwrap(),
     );
-    for k in 0..=12 {
-        let s = 1.4 + 0.05 * f64::from(k);
-        if let Some(x) = find("softgrip-table", s) {
+    for k in 0..=15 {
+        let s = 1.25 + 0.05 * f64::from(k);
+        if let Some(x) = find(mode, s) {
             let f: Vec<String> = x["drops_per_family"]
                 .as_array()
                 .unwrap()

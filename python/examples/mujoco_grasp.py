@@ -66,12 +66,16 @@ TWIST_AMPLITUDE, TWIST_HZ = math.radians(30.0), 2.0  # about the grip axis
 
 
 def operating_force() -> float:
-    """``N*``: what softgrip asks to hold the box still (the hold phase's load)."""
+    """``N*``: what softgrip's model rule asks to hold the box still (the hold phase's
+    load) at the scene's safety factor, ``N_slip`` of the load scaled by it, on the rule's
+    64-node grid. The tick's extra factor on a round patch's moment
+    (``DISC_TORSION_SAFETY_FACTOR``, which ``required_force`` includes) is left out, so the
+    scene stays as first defined."""
     g = 9.81
     ft = BOX_MASS * g / 2.0
     mn = BOX_MASS * g * GRASP_OFFSET / 2.0
-    r = softgrip.required_force(ft, mn, **FINGER, safety=SAFETY, mode=SCENE_MODE)
-    return float(r["normal_force"])
+    ctl = softgrip.Controller(**FINGER, mode=SCENE_MODE, force_nodes=64)
+    return float(ctl.slip_force(SAFETY * ft, SAFETY * mn))
 
 
 def disc_pitch() -> float:

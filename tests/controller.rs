@@ -57,10 +57,19 @@ fn a_round_patchs_moment_carries_its_own_factor_in_the_tick() {
     let cfg = disc_fixed(Mode::Ellipse);
     let c = Controller::<f64>::new(cfg).unwrap();
     let s = cfg.safety;
-    for &(f, m) in &[(0.0, 3e-3), (0.3, 1e-4), (2.0, 3e-3), (9.0, 0.02), (0.3, 0.0)] {
+    for &(f, m) in &[
+        (0.0, 3e-3),
+        (0.3, 1e-4),
+        (2.0, 3e-3),
+        (9.0, 0.02),
+        (0.3, 0.0),
+    ] {
         let want = disc_closed_form(&cfg, axes(&c), f, DISC_TORSION_SAFETY_FACTOR * m, s);
         let got = c.tick_required_force(f, m, s).unwrap().force_n;
-        assert!((got / want - 1.0).abs() < 1e-13, "({f}, {m}): {got} vs {want}");
+        assert!(
+            (got / want - 1.0).abs() < 1e-13,
+            "({f}, {m}): {got} vs {want}"
+        );
         let plain = c.required_force(f, m, s).unwrap().force_n;
         if m > 0.0 {
             assert!(got > plain * (1.0 + 1e-6), "({f}, {m}): {got} vs {plain}");

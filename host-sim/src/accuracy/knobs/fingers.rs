@@ -174,7 +174,11 @@ impl FingerRef {
                 let mn = cfg.mu * n_star * arm * psi.sin() / s;
                 let beta = 0.61 * i as f64;
                 let (fx, fy) = (ft * beta.cos(), ft * beta.sin());
-                let (big_f, big_m) = (s * ft / cfg.mu, s * mn / cfg.mu);
+                // The tick asks for a round patch's moment times its own factor
+                // (`DISC_TORSION_SAFETY_FACTOR`): the exact and ellipse answers it is
+                // measured against are for that requirement.
+                let beta = cfg.shape.torsion_safety_factor();
+                let (big_f, big_m) = (s * ft / cfg.mu, s * beta * mn / cfg.mu);
                 loads.push(Load {
                     fx,
                     fy,

@@ -150,8 +150,10 @@ pub(super) fn measure_exact(v: &Variant, fingers: &[FingerRef; 2]) -> Result<Mea
             out.surface_err[k] = out.surface_err[k].max((g.u_exact / u - 1.0).abs());
         }
         let mut errs = ForceErrors::default();
+        // As the tick does, a round patch's moment carries its own factor.
+        let beta = finger.cfg.shape.torsion_safety_factor();
         for load in &fr.loads {
-            let o = exact_tick(&surface, load.fx, load.fy, load.mn, load.n_meas);
+            let o = exact_tick(&surface, load.fx, load.fy, beta * load.mn, load.n_meas);
             errs.add(o.required_n, load, false);
         }
         out.n_err_own = out.n_err_own.max(errs.own);

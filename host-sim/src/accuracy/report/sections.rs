@@ -305,8 +305,10 @@ fn how_to_read(out: &mut String, results: &Results) {
         "## How to read the tables\n\n\
          Two fingers: the **rectangle** is `ControllerConfig::default()` (hemicylinder, \
          `k = 2`, `a = 2.5 mm·N^½`, `l = 10 mm`, so `l/a` runs from 8.9 down to 0.89 over \
-         0.2–20 N; `μ = 0.8`, `s = 1.3`); the **disc** is the same with a hemispherical tip \
-         and Hertzian growth `a = 2.5 mm·N^⅓`. Every configuration differs from the \
+         0.2–20 N; `μ = 0.8`, `s = {}`); the **disc** is the same with a hemispherical tip \
+         and Hertzian growth `a = 2.5 mm·N^⅓` (the tick asks for its moment times \
+         `DISC_TORSION_SAFETY_FACTOR`, and its errors are against the exact answer to \
+         that). Every configuration differs from the \
          project's defaults (order 28, 48 samples, 8 aspects, 48 force nodes, f32 start-up, \
          f32 tick, `libm`) in the one setting its row names.\n\n\
          - **pitch err**: the moment arm `a·pitch` the start-up stores at each force node \
@@ -337,6 +339,7 @@ fn how_to_read(out: &mut String, results: &Results) {
            machine does not bias one configuration). Timings of identical code still differ \
            by a few per cent.\n\
          - **Pareto**: see the Pareto section.\n",
+        softgrip::controller::ControllerConfig::DEFAULT.safety,
         b.grid_forces,
         b.grid_directions,
         pct(rect.ellipse_gap),

@@ -29,23 +29,31 @@ fn json_has_the_issue_keys_and_the_disc_closed_form_at_gamma_zero() {
         for key in ["normal_force", "n_slip", "a", "utilisation", "status"] {
             assert!(!v[key].is_null(), "{key}");
         }
-        // docs/model.md's closed form with the inscribed ellipse (A, B) for Eq. 10's unit circle:
-        // N_req(s) = s·sqrt((f/(μA))² + (m/(μ a pitch B))²), pitch = 3π/16.
+        // docs/model.md's closed form with the inscribed ellipse (A, B) for Eq. 10's unit circle,
+        // the round patch's moment carrying its own factor β in the tick's requirement:
+        // N_req(s) = s·sqrt((f/(μA))² + (β·m/(μ a pitch B))²), pitch = 3π/16; N_slip has
+        // neither s nor β.
         let pitch = 3.0 * std::f64::consts::PI / 16.0;
         let ax = v["ellipse_axes"][0].as_f64().unwrap();
         let bx = v["ellipse_axes"][1].as_f64().unwrap();
         assert!(ax > 0.9 && ax < 1.0 && bx > 0.9 && bx < 1.0, "{ax} {bx}");
-        let want = 1.5
-            * ((1.0f64 / (0.8 * ax)).powi(2) + (0.004 / (0.8 * 0.008 * pitch * bx)).powi(2)).sqrt();
+        let beta = softgrip::controller::DISC_TORSION_SAFETY_FACTOR;
+        let closed = |b: f64| {
+            ((1.0f64 / (0.8 * ax)).powi(2) + (b * 0.004 / (0.8 * 0.008 * pitch * bx)).powi(2))
+                .sqrt()
+        };
+        let (want, slip) = (1.5 * closed(beta), closed(1.0));
         let got = v["normal_force"].as_f64().unwrap();
         let tol = if precision == "f64" { 1e-12 } else { 1e-6 };
         assert!(
             (got / want - 1.0).abs() < tol,
             "{precision}: {got} vs {want}"
         );
-        assert!((v["n_slip"].as_f64().unwrap() * 1.5 / got - 1.0).abs() < tol);
+        assert!((v["n_slip"].as_f64().unwrap() / slip - 1.0).abs() < tol);
         assert_eq!(v["a"].as_f64(), Some(0.008));
-        assert!((v["utilisation"].as_f64().unwrap() - 1.0 / 1.5).abs() < tol);
+        // At γ = 0 the capacity is linear in N: the unscaled load's utilisation is N_slip/N.
+        let u = v["utilisation"].as_f64().unwrap();
+        assert!((u / (slip / want) - 1.0).abs() < tol, "{u}");
         assert_eq!(v["status"], "ok");
         // Conservative: never below the exact surface's answer.
         let exact = v["exact_force"].as_f64().unwrap();

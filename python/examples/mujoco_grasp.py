@@ -4,6 +4,10 @@ grip force set every 1 ms step by ``softgrip.Controller`` and, for comparison, b
 constant-force and Coulomb (``s·f_t/μ``) baselines.
 
     python python/examples/mujoco_grasp.py [--json] [--plot out.png] [--duration S]
+    python python/examples/mujoco_grasp.py --sweep 1.0,1.2,1.35,1.5,1.75
+
+``--sweep`` runs softgrip in both modes at each listed safety factor instead, and prints a
+Markdown table of their mean force over the least constant grip that holds the scene.
 
 Each fingertip is a soft hemisphere (condim 6, elliptic cone). Each step reads each
 fingertip's contact wrench with ``mj_contactForce``, takes the tangential force and the
@@ -390,15 +394,70 @@ def least_holding_constant(
     return best
 
 
+def safety_sweep(
+    safeties: list[float], mu_t: float, least_n: Optional[float], duration: float = T_END
+) -> list[dict]:
+    """softgrip in each mode at each safety factor: held, mean force and its ratio to the
+    least holding constant grip (`None` when no constant of the grid holds)."""
+    rows = []
+    for s in safeties:
+        row = dict(safety=s)
+        for mode in ("ellipse", "table"):
+            r = run(Softgrip(mode=mode, safety=s), mu_t, duration)
+            row[mode] = dict(
+                held=r.held,
+                mean_force_n=r.mean_force_n,
+                over_least=r.mean_force_n / least_n if least_n else None,
+                rotation_deg=r.rotation_deg,
+            )
+        rows.append(row)
+    return rows
+
+
+def print_sweep(rows: list[dict], least_n: Optional[float]) -> None:
+    default = softgrip.default_config()
+    ref = f"{least_n:g} N" if least_n else "no holding constant"
+    print(f"| safety | ellipse: mean N (× {ref}) | table: mean N (× {ref}) |")
+    print("| ---: | ---: | ---: |")
+    for row in rows:
+        cells = []
+        for mode in ("ellipse", "table"):
+            c = row[mode]
+            ratio = f" ({c['over_least']:.3f})" if c["over_least"] is not None else ""
+            text = f"{c['mean_force_n']:.2f}{ratio}" + ("" if c["held"] else ", drops")
+            if mode == default["mode"] and abs(row["safety"] - default["safety"]) < 1e-9:
+                text = f"**{text}**"
+            cells.append(text)
+        safety = f"{row['safety']:.2f}"
+        safety = safety[:-1] if safety.endswith("0") else safety
+        print(f"| {safety} | {cells[0]} | {cells[1]} |")
+
+
 def main(argv: Optional[list[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     ap.add_argument("--plot", metavar="PNG", help="draw the forces and the slip into PNG")
     ap.add_argument("--duration", type=float, default=T_END, help="seconds to simulate")
+    ap.add_argument(
+        "--sweep",
+        metavar="S1,S2,...",
+        help="run softgrip in both modes at these safety factors and print a Markdown table",
+    )
     args = ap.parse_args(argv)
 
     n_star = operating_force()
     mu_t = torsional_coefficient(n_star)
+    if args.sweep:
+        safeties = [float(x) for x in args.sweep.split(",") if x.strip()]
+        coarse = [run(p, mu_t, args.duration) for p in baselines()]
+        least_n = least_holding_constant(coarse, mu_t, args.duration)
+        rows = safety_sweep(safeties, mu_t, least_n, args.duration)
+        if args.json:
+            json.dump(dict(least_holding_constant_n=least_n, rows=rows), sys.stdout, indent=2)
+            print()
+        else:
+            print_sweep(rows, least_n)
+        return 0
     results = [run(p, mu_t, args.duration, keep_trace=bool(args.plot)) for p in baselines()]
     cone = cone_vs_fls(mu_t, sorted({0.5, 1.0, 2.0, 5.0, 10.0, 20.0, round(n_star, 3)}))
     soft = results[0]

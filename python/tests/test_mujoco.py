@@ -71,3 +71,29 @@ def test_json_output(grasp, capsys):
     out = json.loads(capsys.readouterr().out)
     assert {r["controller"] for r in out["results"]} >= {"softgrip", "coulomb s·f_t/μ"}
     assert out["cone_vs_fls"]
+
+
+def test_safety_sweep_runs_both_modes_and_marks_the_default(grasp, capsys):
+    import json
+
+    default = softgrip.default_config()
+    sweep = f"1.0,{default['safety']}"
+    assert grasp.main(["--sweep", sweep, "--json", "--duration", "0.5"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert [r["safety"] for r in out["rows"]] == [1.0, default["safety"]]
+    for row in out["rows"]:
+        for mode in ("ellipse", "table"):
+            cell = row[mode]
+            assert cell["mean_force_n"] > 0.0
+            if out["least_holding_constant_n"] is not None:
+                ratio = cell["mean_force_n"] / out["least_holding_constant_n"]
+                assert abs(cell["over_least"] - ratio) < 1e-12
+    # More safety asks more force, in each mode.
+    low, high = out["rows"]
+    for mode in ("ellipse", "table"):
+        assert low[mode]["mean_force_n"] < high[mode]["mean_force_n"], (low, high)
+    # The Markdown table bolds the default's cell and no other.
+    assert grasp.main(["--sweep", sweep, "--duration", "0.5"]) == 0
+    table = capsys.readouterr().out
+    assert table.count("**") == 2, table
+    assert table.splitlines()[0].startswith("| safety | ellipse")

@@ -99,9 +99,9 @@
 //! trim a margin that a slip signal raised, or a belief `μ̂` that a slip lowered: the
 //! steady factor waits until the slip response has relaxed back to its configured state
 //! ([`slip`](super::slip)). ([`Controller`](super::Controller) applies both.) What it
-//! gives up: a steady hold covers a smaller error of `μ`. At `s = 1.75` it asks
-//! `1.49·N_slip`, which holds a true `μ` down to 67 % of the configured one, not 57 %; a
-//! slip sensor, or a larger `s`, covers the rest.
+//! gives up: a steady hold covers a smaller error of `μ`. At the default `s = 1.35` it
+//! asks `1.15·N_slip`, which holds a true `μ` down to 87 % of the configured one, not
+//! 74 %; a slip sensor, or a larger `s`, covers the rest.
 //!
 //! **Why it ramps in.** On a traced `lift-hold` turn the object turned further when the
 //! command fell in one step, from 1.99 N to 1.69 N, as the steady factor took over; the

@@ -39,7 +39,7 @@ pub use baseline::{Baseline, BaselineSettings};
 /// names, CSV columns and bench.json keys carry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, ValueEnum)]
 pub enum ControllerKind {
-    /// softgrip in the configuration's mode (the default mode: the surface table).
+    /// softgrip in the default configuration's mode (`ControllerConfig::DEFAULT.mode`).
     Softgrip,
     /// softgrip, mode `ellipse`.
     SoftgripEllipse,
@@ -189,8 +189,8 @@ impl ValueEnum for ControllerChoice {
     fn to_possible_value(&self) -> Option<PossibleValue> {
         match self {
             Self::All => Some(PossibleValue::new("all").help(
-                "softgrip, softgrip-ellipse and every baseline (not softgrip-table, the same as \
-                 softgrip in the default mode)",
+                "softgrip in both modes (the default mode as softgrip-ellipse or softgrip-table) \
+                 and every baseline",
             )),
             Self::One(k) => k.to_possible_value(),
         }

@@ -140,7 +140,7 @@ fn render(held: &Value) -> String {
             cell("softgrip-table")
         );
     }
-    out += &without_limit(c, &find);
+    out += &without_limit(held, c, &find);
     out += "\nEvery baseline enters on the same terms: the same rule, over its own knob \
             alone, chooses the default the bench marks for it (`*`).\n\n\
             | controller | default | its drops | the fewest (safe within) | \
@@ -160,17 +160,24 @@ fn render(held: &Value) -> String {
 }
 
 /// The block's paragraph on the trials at the hand's limit: the rule without them, and
-/// the chosen mode's drops family by family.
-fn without_limit<'a>(c: &Value, find: &impl Fn(&str, f64) -> Option<&'a Value>) -> String {
+/// the chosen mode's drops family by family, with its force in `lift-hold` (the issue's
+/// aim there is 1.25 × the oracle's), from 1.0 up.
+fn without_limit<'a>(
+    held: &Value,
+    c: &Value,
+    find: &impl Fn(&str, f64) -> Option<&'a Value>,
+) -> String {
     let w = &c["without_limit"];
     let mode = c["chosen"]["controller"].as_str().unwrap();
     let mut out = format!(
         "\nOf the choice's {} drops, {} are trials at the hand's limit. Without the {} \
          trials at the hand's limit, the fewest drops are {}, settings within {:.1} count as \
          safe, and the rule chooses **{} at {}** ({:.3} ×). {mode}'s drops, family by \
-         family:\n\n\
+         family (`mu-mismatch` counts the trials without a slip sensor too), and its force \
+         in `lift-hold`:\n\n\
          | safety | `lift-hold` | `shake` | `twist` | `mu-mismatch` | `faults` | \
-         of them at the hand's limit |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+         of them at the hand's limit | `lift-hold` force/oracle |\n\
+         | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
         c["chosen"]["drops"],
         c["chosen"]["drops_at_limit"],
         c["aim_trials"].as_u64().unwrap() - w["aim_trials"].as_u64().unwrap(),
@@ -180,16 +187,28 @@ fn without_limit<'a>(c: &Value, find: &impl Fn(&str, f64) -> Option<&'a Value>) 
         w["chosen"]["knob_value"],
         w["chosen"]["force_over_oracle"].as_f64().unwrap(),
     );
-    for k in 0..=15 {
-        let s = 1.25 + 0.05 * f64::from(k);
-        if let Some(x) = find(mode, s) {
+    let lift_hold = |s: f64| {
+        held["rows"].as_array().unwrap().iter().find(|r| {
+            r["controller"] == mode
+                && r["family"] == "lift-hold"
+                && (r["knob_value"].as_f64().unwrap() - s).abs() < 1e-9
+        })
+    };
+    for k in 0..=20 {
+        let s = 1.0 + 0.05 * f64::from(k);
+        if let (Some(x), Some(r)) = (find(mode, s), lift_hold(s)) {
             let f: Vec<String> = x["drops_per_family"]
                 .as_array()
                 .unwrap()
                 .iter()
                 .map(Value::to_string)
                 .collect();
-            out += &format!("| {s:.2} | {} | {} |\n", f.join(" | "), x["drops_at_limit"]);
+            out += &format!(
+                "| {s:.2} | {} | {} | {:.3} |\n",
+                f.join(" | "),
+                x["drops_at_limit"],
+                r["force_over_oracle"].as_f64().unwrap()
+            );
         }
     }
     out

@@ -331,46 +331,42 @@ fn render_claims(b: &Bench) -> String {
             at_limit.join(", ")
         );
     }
-    let mut wins = Vec::new();
+    let wins = b.dominated_families();
     let mut losses = Vec::new();
-    for f in FAMILIES {
+    for f in FAMILIES.into_iter().filter(|f| !wins.contains(f)) {
         let dom = b.dominance(f);
         let open: Vec<&Contest> = dom
             .contests
             .iter()
             .filter(|c| c.beaten_by.is_none())
             .collect();
-        if open.is_empty() {
-            wins.push(f.to_string());
-        } else {
-            let cheapest = open[0];
-            let bound = b.row(f, &cheapest.baseline).ci_high;
-            let best_ours = b
-                .rows
-                .iter()
-                .filter(|r| r.family == f && r.controller.starts_with("softgrip"))
-                .filter(|r| r.ci_high <= bound)
-                .min_by(|x, y| x.force_over_oracle.total_cmp(&y.force_over_oracle));
-            let against = match best_ours {
-                Some(r) => format!(
-                    "softgrip's cheapest setting whose drops' upper bound is no higher, {} {}, \
-                     uses {:.3} ×",
-                    r.controller, r.knob_value, r.force_over_oracle
-                ),
-                None => "no softgrip setting's drops have an upper bound as low".to_string(),
-            };
-            let verb = if open.len() == 1 { "is" } else { "are" };
-            losses.push(format!(
-                "in {f}, {} of the {} baseline settings that drop at most 5 % {verb} not \
-                 beaten (the cheapest, {} at {}/{} drops, uses {:.3} × the oracle; {against})",
-                open.len(),
-                dom.contests.len(),
-                setting(&cheapest.baseline),
-                cheapest.drops.0,
-                cheapest.drops.1,
-                cheapest.force_over_oracle
-            ));
-        }
+        let cheapest = open[0];
+        let bound = b.row(f, &cheapest.baseline).ci_high;
+        let best_ours = b
+            .rows
+            .iter()
+            .filter(|r| r.family == f && r.controller.starts_with("softgrip"))
+            .filter(|r| r.ci_high <= bound)
+            .min_by(|x, y| x.force_over_oracle.total_cmp(&y.force_over_oracle));
+        let against = match best_ours {
+            Some(r) => format!(
+                "softgrip's cheapest setting whose drops' upper bound is no higher, {} {}, \
+                 uses {:.3} ×",
+                r.controller, r.knob_value, r.force_over_oracle
+            ),
+            None => "no softgrip setting's drops have an upper bound as low".to_string(),
+        };
+        let verb = if open.len() == 1 { "is" } else { "are" };
+        losses.push(format!(
+            "in {f}, {} of the {} baseline settings that drop at most 5 % {verb} not \
+             beaten (the cheapest, {} at {}/{} drops, uses {:.3} × the oracle; {against})",
+            open.len(),
+            dom.contests.len(),
+            setting(&cheapest.baseline),
+            cheapest.drops.0,
+            cheapest.drops.1,
+            cheapest.force_over_oracle
+        ));
     }
     let _ = write!(
         s,

@@ -449,7 +449,8 @@ def main(argv: Optional[list[str]] = None) -> int:
     mu_t = torsional_coefficient(n_star)
     if args.sweep:
         safeties = [float(x) for x in args.sweep.split(",") if x.strip()]
-        coarse = [run(p, mu_t, args.duration) for p in baselines()]
+        constants = [p for p in baselines() if isinstance(p, Constant)]
+        coarse = [run(p, mu_t, args.duration) for p in constants]
         least_n = least_holding_constant(coarse, mu_t, args.duration)
         rows = safety_sweep(safeties, mu_t, least_n, args.duration)
         if args.json:

@@ -9,6 +9,7 @@ use crc::{Crc, NoTable};
 /// check value `0xE3069283`).
 ///
 /// Bitwise (`NoTable`): eight shift-and-xor steps per byte instead of a lookup in a 1 KiB
-/// table, which the firmware's flash needed more (docs/decisions/firmware-size-levers.md). It runs on
-/// each frame, outside the controller's tick.
+/// table, which the firmware's flash needed more
+/// (docs/decisions/firmware-size-levers.md). It runs on each frame, outside the
+/// controller's tick.
 pub static CRC: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&crc::CRC_32_ISCSI);

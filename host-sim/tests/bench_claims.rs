@@ -2,7 +2,7 @@
 //!
 //! The published run (docs/bench.md gives its command: pooled seeds, the brush plant)
 //! writes `bench.json` and `trials-FAMILY.csv`; their copies in docs/bench/ are the run
-//! the docs quote. The claim in README.md and the results in docs/bench.md sit between
+//! the docs quote. The claim in README.md and the results in docs/bench-results.md sit between
 //! `bench-claims` and `bench-results` markers: this test renders both from those files
 //! (every figure is a value of `bench.json`, or of `trials-mu-mismatch.csv` for the split
 //! by slip sensor, rounded as printed) and fails when a page's block differs, so no claim
@@ -515,7 +515,7 @@ fn render_aims(b: &Bench) -> String {
     s + "5. `--hard` shakes at most 2 × the oracle: another run's (\"What a trial is\").\n\n"
 }
 
-/// docs/bench.md's results block.
+/// docs/bench-results.md's results block.
 fn render_results(b: &Bench) -> String {
     let ours = b.ours();
     let mut s = format!(
@@ -644,7 +644,13 @@ fn the_readme_claim_is_the_published_benchmark_run() {
 #[test]
 fn the_bench_page_results_are_the_published_benchmark_run() {
     let b = load();
-    common::check_block("docs/bench.md", RESULTS, &render_results(&b), "docs/bench/").unwrap();
+    common::check_block(
+        "docs/bench-results.md",
+        RESULTS,
+        &render_results(&b),
+        "docs/bench/",
+    )
+    .unwrap();
 }
 
 /// The published run pools at least three seeds on the brush plant, with every family

@@ -406,7 +406,7 @@ fn brush_scene_keys_are_checked_by_name() {
 /// steady under the same moment barely turns; a deeper easing locks in more, while
 /// repeating the same easing adds little (the rim reattaches at the same twist). This is
 /// how the bench's drops happen below gross slip (turns past 0.2 rad; docs/bench.md,
-/// "What the drops are"): a grip that falls and rises under a moment pays in turn.
+/// "The oracle and the statistics"): a grip that falls and rises under a moment pays in turn.
 #[test]
 fn a_grip_that_eases_and_comes_back_under_a_moment_keeps_part_of_the_twist() {
     let f = finger(BrushSettings::default());

@@ -80,7 +80,7 @@ fn every_baselines_default_is_the_held_out_runs_choice() {
 
 const BLOCK: (&str, &str) = ("<!-- default-choice:begin", "<!-- default-choice:end -->");
 
-/// docs/bench.md's block on the default, from the held-out run's `default_choice`.
+/// docs/bench-results.md's block on the default, from the held-out run's `default_choice`.
 fn render(held: &Value) -> String {
     let c = &held["default_choice"];
     let seeds: Vec<String> = seeds(held).iter().map(u64::to_string).collect();
@@ -218,7 +218,7 @@ fn without_limit<'a>(
 fn the_bench_page_states_the_held_out_choice() {
     let held = json("docs/bench/heldout/bench.json");
     common::check_block(
-        "docs/bench.md",
+        "docs/bench-results.md",
         BLOCK,
         &render(&held),
         "docs/bench/heldout/",

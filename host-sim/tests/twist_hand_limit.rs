@@ -1,11 +1,11 @@
 //! `twist` trials at the hand's limit, on the brush finger: why no controller that grips
 //! only once it sees the load can be held to "no drop" on such trials. The trials are
 //! 2016/10 and 2016/7 of the bench's `twist` family (a seed that no run scores, tunes or
-//! chooses a default on; docs/bench.md, "What the `twist` drops are"). No timing
+//! chooses a default on; docs/decisions/twist-hand-limit.md). No timing
 //! assertions.
 //!
 //! `cargo test --release -p host-sim --test twist_hand_limit -- --nocapture` prints the
-//! figures docs/bench.md quotes.
+//! figures docs/decisions/twist-hand-limit.md quotes.
 
 use host_sim::bench::families::{self, Ranges};
 use host_sim::bench::sweep;

@@ -9,8 +9,8 @@
 //!    out (without a sensor a wrong μ is beyond what any margin is promised to cover),
 //!    but the default is what a user gets who has not tuned it, a hand without a sensor
 //!    included, and a rule that counted the aims alone walked a safer front down to a
-//!    factor that gave up that cover (docs/bench.md, "The rule weighs every holdable
-//!    trial"). `n` is the number of holdable trials, the same for every setting.
+//!    factor that gave up that cover (docs/decisions/default-choice-rule.md). `n` is
+//!    the number of holdable trials, the same for every setting.
 //! 2. **As safe as the safest.** The safest setting drops the fewest, `d₀`. A setting
 //!    counts as safe when its drops are within the Wilson 95 % upper bound of `d₀` in
 //!    `n` (a run of a few hundred trials cannot tell such settings apart).
@@ -90,7 +90,7 @@ pub struct Choice {
     /// Every setting, in the sweeps' order.
     pub candidates: Vec<Candidate>,
     /// The same rule without the trials at the hand's limit, which no grip below 95 % of
-    /// `N_max` holds even from the start (docs/bench.md, "What the `twist` drops are"):
+    /// `N_max` holds even from the start (docs/decisions/twist-hand-limit.md):
     /// what sets the choice apart from them. `None` when the run has no `constant` sweep
     /// to find them.
     pub without_limit: Option<WithoutLimit>,

@@ -11,8 +11,9 @@
 //!   `ln N`).
 //!
 //! The reference is an [`ExactSurface`] at quadrature order 128 (converged to about 1e-15,
-//! docs/core.md, "Accuracy and cost") with tolerances near f64 rounding; the per-tick exact rule
-//! is the same search at the default order 28 with tolerances fit for a control loop.
+//! docs/core.md, "Accuracy: what the tests assert") with tolerances near f64 rounding; the
+//! per-tick exact rule is the same search at the default order 28 with tolerances fit for a
+//! control loop.
 
 use softgrip::contact::ContactSize;
 use softgrip::controller::{ControllerConfig, FingerShape};

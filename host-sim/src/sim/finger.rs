@@ -12,7 +12,7 @@
 //! brush finger without `c` and `gamma` can be measured (`experiment`) but runs no
 //! controller.
 
-use crate::brush::{BrushFinger, BrushParams, BrushSettings, BrushShape};
+use crate::brush::{BrushFinger, BrushParams, BrushSettings, BrushShape, ParamError};
 use serde::Deserialize;
 use softgrip::controller::FingerShape;
 
@@ -100,20 +100,45 @@ impl Finger {
     }
 
     /// The brush finger (`None` for `model = "fls"`); the error names the scene key.
-    pub fn brush_finger(&self) -> Result<Option<BrushFinger>, String> {
+    pub fn brush_finger(&self) -> Result<Option<BrushFinger>, BrushKeyError> {
         let Some(p) = self.brush_params() else {
             return Ok(None);
         };
-        BrushFinger::new(p).map(Some).map_err(|e| {
-            let table = if matches!(
-                e.key,
+        BrushFinger::new(p).map(Some).map_err(|param| {
+            let shared = matches!(
+                param.key,
                 "mu" | "half_length_m" | "young_modulus_pa" | "poisson"
-            ) {
-                "finger"
-            } else {
-                "finger.brush"
-            };
-            format!("{table}.{e}")
+            );
+            BrushKeyError {
+                table: if shared { "finger" } else { "finger.brush" },
+                param,
+            }
         })
+    }
+}
+
+/// A brush finger's parameter out of its range, named as the scene writes it: its table
+/// and key, e.g. `finger.brush.radius_m: 2 must lie in (0, 1]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BrushKeyError {
+    /// The table holding the key: `finger` for the keys the brush shares with the limit
+    /// surface (`mu`, `half_length_m`, `young_modulus_pa`, `poisson`), `finger.brush`
+    /// for its own.
+    pub table: &'static str,
+    /// The parameter (its key within `table`) and why it is refused.
+    pub param: ParamError,
+}
+
+impl std::fmt::Display for BrushKeyError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}.{}", self.table, self.param)
+    }
+}
+
+impl std::error::Error for BrushKeyError {}
+
+impl From<BrushKeyError> for String {
+    fn from(e: BrushKeyError) -> Self {
+        e.to_string()
     }
 }

@@ -26,7 +26,7 @@ pub fn brush(args: &FingerArgs) -> Result<BrushFinger, CliError> {
     let f = FingerFile::load(path, "--finger")?;
     f.finger
         .brush_finger()
-        .map_err(usage)?
+        .map_err(|e| usage(e.to_string()))?
         .ok_or_else(|| usage("--plant brush: [finger] has no model = \"brush\"".into()))
 }
 

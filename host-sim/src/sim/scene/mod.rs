@@ -322,9 +322,7 @@ impl Scene {
             return Ok(());
         }
         if let Err(e) = f.brush_finger() {
-            let key = e.split(": ").next().unwrap_or(&e);
-            let (table, k) = key.rsplit_once('.').unwrap_or(("finger", key));
-            return Err(SceneError(format!("{}{e}", at(table, k))));
+            return Err(SceneError(format!("{}{e}", at(e.table, e.param.key))));
         }
         if f.c.is_nan() != f.gamma.is_nan() {
             return Err(SceneError(format!(

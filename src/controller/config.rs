@@ -333,6 +333,16 @@ impl ControllerConfig {
     /// Checks every field (except the table sizes, which the controller checks against
     /// its capacities) and returns the first bad one.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_contact()?;
+        self.validate_forces()?;
+        self.validate_timing()?;
+        self.validate_ranges()?;
+        QuadratureOrder::new(usize::from(self.quadrature_order)).map(|_| ())
+    }
+
+    /// The contact: `μ`, the pressure exponent `k` and its skew, the size law `a = c·N^γ`,
+    /// the rectangle's half-length \[m\].
+    fn validate_contact(&self) -> Result<(), ConfigError> {
         positive("mu", self.mu)?;
         check("k", self.k, self.k >= 1.0, "k >= 1 (inf for uniform)")?;
         if let Some(s) = self.skew {
@@ -360,6 +370,11 @@ impl ControllerConfig {
         if self.shape == FingerShape::Rect {
             positive("half_length_m", self.half_length_m)?;
         }
+        Ok(())
+    }
+
+    /// The safety factor, the force range `[N_min, N_max]` \[N\] and the rate limits \[N/s\].
+    fn validate_forces(&self) -> Result<(), ConfigError> {
         check(
             "safety",
             self.safety,
@@ -374,7 +389,11 @@ impl ControllerConfig {
             "n_max_n > n_min_n",
         )?;
         positive("rise_rate_n_per_s", self.rise_rate_n_per_s)?;
-        positive("fall_rate_n_per_s", self.fall_rate_n_per_s)?;
+        positive("fall_rate_n_per_s", self.fall_rate_n_per_s)
+    }
+
+    /// The tick period and stale timeout \[s\], and the force held on a fault \[N\].
+    fn validate_timing(&self) -> Result<(), ConfigError> {
         positive("tick_period_s", self.tick_period_s)?;
         check(
             "stale_timeout_s",
@@ -387,7 +406,12 @@ impl ControllerConfig {
             self.fault_force_n,
             (self.n_min_n..=self.n_max_n).contains(&self.fault_force_n),
             "n_min_n <= fault_force_n <= n_max_n",
-        )?;
+        )
+    }
+
+    /// The sensor's ranges (force \[N\], moment \[N·m\]) and the actuator's lag \[s\] and
+    /// slew \[N/s\].
+    fn validate_ranges(&self) -> Result<(), ConfigError> {
         check(
             "force_range_n",
             self.force_range_n,
@@ -411,8 +435,7 @@ impl ControllerConfig {
             self.actuator_slew_n_per_s,
             self.actuator_slew_n_per_s > 0.0,
             "actuator_slew_n_per_s > 0 (inf when not slew-limited)",
-        )?;
-        QuadratureOrder::new(usize::from(self.quadrature_order)).map(|_| ())
+        )
     }
 
     /// The core's shape at aspect `l/a` (ignored for the disc).

@@ -126,75 +126,44 @@ pub(crate) fn skewed_point<T: Real>(
     if px == T::zero() && py == T::zero() {
         return symmetric_point(rule, profile, d);
     }
-    let one = T::one();
     let two_pi = T::of(2.0) * T::PI();
-    // Vector from the peak to the centre of rotation, and the boundary point on that ray.
-    let (cx, cy) = (d - px, -py);
+    // Vector from the peak to the centre of rotation.
+    let c = (d - px, -py);
+    let psi_c = rotation_centre_angle(peak, c);
+    let mut sums = [T::zero(); 3];
+    for (lo, hi) in period_pieces(psi_c, two_pi) {
+        let part = rule.integrate(lo, hi, |p: QuadPoint<T>| {
+            per_angle(rule, profile, peak, c, p.x)
+        });
+        for (s, v) in sums.iter_mut().zip(part) {
+            *s = *s + v;
+        }
+    }
+    let norm = two_pi * T::of(profile.disc_constant());
+    let fx = sums[0] / norm;
+    let fy = sums[1] / norm;
+    let m = sums[2] / norm;
+    (fx.libm_hypot(fy), m.abs())
+}
+
+/// `ψ_c` \[rad\]: the angle of the boundary point on the ray from the peak along `c` (the
+/// vector from the peak to the centre of rotation); 0 if the peak is the centre.
+fn rotation_centre_angle<T: Real>(peak: (T, T), c: (T, T)) -> T {
+    let ((px, py), (cx, cy)) = (peak, c);
     let c_len = cx.libm_hypot(cy);
-    let psi_c = if c_len > T::zero() {
+    if c_len > T::zero() {
         let (ex, ey) = (cx / c_len, cy / c_len);
         let rho = ray_to_circle(px, py, ex, ey);
         (py + rho * ey).libm_atan2(px + rho * ex)
     } else {
         T::zero()
-    };
-    let per_angle = |psi: T| -> [T; 3] {
-        let (by, bx) = psi.libm_sin_cos();
-        let (vx, vy) = (bx - px, by - py);
-        let v2 = vx * vx + vy * vy;
-        let jac_psi = one - (px * bx + py * by);
-        if !(v2 > T::zero()) {
-            return [T::zero(); 3];
-        }
-        // Closest approach of the segment's line to the centre of rotation, and the
-        // perpendicular offset there: P − c = w + (s − s*)·V.
-        let along = cx * vx + cy * vy;
-        let s_star = along / v2;
-        let (wx, wy) = (s_star * vx - cx, s_star * vy - cy);
-        let kern = |s: T, comp: T, ds: T| -> [T; 3] {
-            let g = profile.shape(s, comp);
-            let (qx, qy) = (wx + ds * vx, wy + ds * vy);
-            let r = (qx * qx + qy * qy).libm_sqrt();
-            if r <= T::zero() {
-                return [T::zero(); 3];
-            }
-            let (pxs, pys) = (px + s * vx, py + s * vy);
-            let jac = g * s * jac_psi / r;
-            [-jac * qy, jac * qx, jac * (pxs * qx + pys * qy)]
-        };
-        // The segment in two pieces, `[0, s*]` and `[s*, 1]`, when the closest approach is
-        // inside it, else `[0, 1]` and an empty piece (which integrates to 0): one call
-        // site for all of them, so the integrand is inlined once.
-        let pieces = if s_star > T::zero() && s_star < one {
-            [
-                (T::zero(), s_star, Piece::BeforeApproach),
-                (s_star, one, Piece::AfterApproach),
-            ]
-        } else {
-            let piece = if s_star >= one {
-                Piece::ApproachBeyond
-            } else {
-                Piece::ApproachBefore
-            };
-            [(T::zero(), one, piece), (one, one, piece)]
-        };
-        let mut sums = [T::zero(); 3];
-        for (lo, hi, piece) in pieces {
-            let part = rule.integrate(lo, hi, |p: QuadPoint<T>| match piece {
-                Piece::BeforeApproach => kern(p.x, one - p.x, -p.to_hi),
-                Piece::AfterApproach => kern(p.x, p.to_hi, p.from_lo),
-                Piece::ApproachBeyond => kern(p.x, p.to_hi, -(p.to_hi + (s_star - one))),
-                Piece::ApproachBefore => kern(p.x, p.to_hi, p.from_lo - s_star),
-            });
-            for (s, v) in sums.iter_mut().zip(part) {
-                *s = *s + v;
-            }
-        }
-        sums
-    };
-    // Pieces of the period: split at ψ_c, at the boundary point nearest the centre of
-    // rotation (ψ = 0, where the integrand turns sharply when the centre is near the edge)
-    // and opposite ψ_c, so that each piece is at most half a turn.
+    }
+}
+
+/// Pieces of the period `[ψ_c, ψ_c + 2π]`: split at ψ_c, at the boundary point nearest the
+/// centre of rotation (ψ = 0, where the integrand turns sharply when the centre is near the
+/// edge) and opposite ψ_c, so that each piece is at most half a turn.
+fn period_pieces<T: Real>(psi_c: T, two_pi: T) -> [(T, T); 3] {
     let mut nearest = T::zero();
     while nearest <= psi_c {
         nearest = nearest + two_pi;
@@ -205,16 +174,77 @@ pub(crate) fn skewed_point<T: Real>(
     } else {
         (opposite, nearest)
     };
+    [(psi_c, b1), (b1, b2), (b2, psi_c + two_pi)]
+}
+
+/// The inner integral along the segment from the peak to the boundary point `B(ψ)`:
+/// `[f̃x, f̃y, m̃]` before normalisation. `c` is the vector from the peak to the centre of
+/// rotation. The outer quadrature's integrand (hot at start-up), hence inlined.
+#[inline]
+fn per_angle<T: Real>(
+    rule: &TanhSinh<T>,
+    profile: &KProfile<T>,
+    peak: (T, T),
+    c: (T, T),
+    psi: T,
+) -> [T; 3] {
+    let ((px, py), (cx, cy)) = (peak, c);
+    let one = T::one();
+    let (by, bx) = psi.libm_sin_cos();
+    let (vx, vy) = (bx - px, by - py);
+    let v2 = vx * vx + vy * vy;
+    let jac_psi = one - (px * bx + py * by);
+    if !(v2 > T::zero()) {
+        return [T::zero(); 3];
+    }
+    // Closest approach of the segment's line to the centre of rotation, and the
+    // perpendicular offset there: P − c = w + (s − s*)·V.
+    let along = cx * vx + cy * vy;
+    let s_star = along / v2;
+    let (wx, wy) = (s_star * vx - cx, s_star * vy - cy);
+    let kern = |s: T, comp: T, ds: T| -> [T; 3] {
+        let g = profile.shape(s, comp);
+        let (qx, qy) = (wx + ds * vx, wy + ds * vy);
+        let r = (qx * qx + qy * qy).libm_sqrt();
+        if r <= T::zero() {
+            return [T::zero(); 3];
+        }
+        let (pxs, pys) = (px + s * vx, py + s * vy);
+        let jac = g * s * jac_psi / r;
+        [-jac * qy, jac * qx, jac * (pxs * qx + pys * qy)]
+    };
     let mut sums = [T::zero(); 3];
-    for (lo, hi) in [(psi_c, b1), (b1, b2), (b2, psi_c + two_pi)] {
-        let part = rule.integrate(lo, hi, |p: QuadPoint<T>| per_angle(p.x));
+    for (lo, hi, piece) in segment_pieces(s_star) {
+        let part = rule.integrate(lo, hi, |p: QuadPoint<T>| match piece {
+            Piece::BeforeApproach => kern(p.x, one - p.x, -p.to_hi),
+            Piece::AfterApproach => kern(p.x, p.to_hi, p.from_lo),
+            Piece::ApproachBeyond => kern(p.x, p.to_hi, -(p.to_hi + (s_star - one))),
+            Piece::ApproachBefore => kern(p.x, p.to_hi, p.from_lo - s_star),
+        });
         for (s, v) in sums.iter_mut().zip(part) {
             *s = *s + v;
         }
     }
-    let norm = two_pi * T::of(profile.disc_constant());
-    let fx = sums[0] / norm;
-    let fy = sums[1] / norm;
-    let m = sums[2] / norm;
-    (fx.libm_hypot(fy), m.abs())
+    sums
+}
+
+/// The segment in two pieces, `[0, s*]` and `[s*, 1]`, when the closest approach `s*` is
+/// inside it, else `[0, 1]` and an empty piece (which integrates to 0): one call site for
+/// all of them, so the integrand is inlined once.
+#[inline]
+fn segment_pieces<T: Real>(s_star: T) -> [(T, T, Piece); 2] {
+    let one = T::one();
+    if s_star > T::zero() && s_star < one {
+        [
+            (T::zero(), s_star, Piece::BeforeApproach),
+            (s_star, one, Piece::AfterApproach),
+        ]
+    } else {
+        let piece = if s_star >= one {
+            Piece::ApproachBeyond
+        } else {
+            Piece::ApproachBefore
+        };
+        [(T::zero(), one, piece), (one, one, piece)]
+    }
 }

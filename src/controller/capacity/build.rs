@@ -61,7 +61,26 @@ impl<T: Real> Capacity<T> {
         self.mode = cfg.mode;
         self.nodes = nodes;
         self.arm_linear_below = cfg.gamma > 0.0;
-        let cap = self;
+        self.fill_arms(cfg, model, &contact, varying, fixed_pitch)?;
+        self.fill_inv_width();
+        check_range(cfg, self)?;
+        self.fill_surface(cfg, model, &contact, varying)?;
+        self.check_stored(cfg)
+    }
+
+    /// The node forces `N_j` \[N\] (log-spaced from `N_min` to `N_max`, the ends exact)
+    /// and the moment arms `R_j = a(N_j)·pitch` \[m\] with their inverses, computed in `P`.
+    /// `fixed_pitch` is the pitch when the aspect does not vary with the force.
+    fn fill_arms<P: Real>(
+        &mut self,
+        cfg: &ControllerConfig,
+        model: &mut FlsModel<P>,
+        contact: &ContactSize<P>,
+        varying: bool,
+        fixed_pitch: P,
+    ) -> Result<(), ConfigError> {
+        let nodes = self.nodes;
+        let aspect_of = |a: P| (P::of(cfg.half_length_m) / a).to_f64();
         let ln_n_min = P::of(cfg.n_min_n).libm_ln();
         let ln_step = (P::of(cfg.n_max_n).libm_ln() - ln_n_min) / P::of_usize(nodes - 1);
         for j in 0..nodes {
@@ -81,31 +100,45 @@ impl<T: Real> Capacity<T> {
             };
             let arm = a * pitch;
             if let (Some(f), Some(r), Some(ir)) = (
-                cap.force_n.get_mut(j),
-                cap.arm_m.get_mut(j),
-                cap.inv_arm_per_m.get_mut(j),
+                self.force_n.get_mut(j),
+                self.arm_m.get_mut(j),
+                self.inv_arm_per_m.get_mut(j),
             ) {
                 *f = T::of(n.to_f64());
                 *r = T::of(arm.to_f64());
                 *ir = T::of(arm.recip().to_f64());
             }
         }
-        cap.fill_inv_width();
-        check_range(cfg, cap)?;
+        Ok(())
+    }
+
+    /// The mode's surface: table mode's rows of inverse radii, or ellipse mode's demand
+    /// scales `(1/A, 1/B)` from the inscribed ellipse.
+    fn fill_surface<P: Real>(
+        &mut self,
+        cfg: &ControllerConfig,
+        model: &mut FlsModel<P>,
+        contact: &ContactSize<P>,
+        varying: bool,
+    ) -> Result<(), ConfigError> {
         match cfg.mode {
-            Mode::Table => cap.build_shapes(cfg, model, &contact, varying)?,
+            Mode::Table => self.build_shapes(cfg, model, contact, varying)?,
             Mode::Ellipse => {
-                let e = inscribed_ellipse(cfg, model, &contact, varying)?;
-                cap.demand_scale = [
+                let e = inscribed_ellipse(cfg, model, contact, varying)?;
+                self.demand_scale = [
                     T::of(e.x_semi_axis.recip().to_f64()),
                     T::of(e.y_semi_axis.recip().to_f64()),
                 ];
             }
         }
-        // The grid as stored in `T` must itself be valid (increasing finite forces,
-        // positive finite arms and radii): a configuration valid in f64 can round to
-        // zeros or infinities in f32.
-        if Self::check_tables(cfg, &cap.tables()).is_err() {
+        Ok(())
+    }
+
+    /// The grid as stored in `T` must itself be valid (increasing finite forces, positive
+    /// finite arms and radii): a configuration valid in f64 can round to zeros or
+    /// infinities in f32.
+    fn check_stored(&self, cfg: &ControllerConfig) -> Result<(), ConfigError> {
+        if Self::check_tables(cfg, &self.tables()).is_err() {
             return Err(ConfigError::OutOfRange {
                 param: "n_min_n",
                 value: cfg.n_min_n,
@@ -115,6 +148,8 @@ impl<T: Real> Capacity<T> {
         Ok(())
     }
 
+    /// Table mode: each node's aspect position, and per aspect ratio a row of inverse L1
+    /// radii at the [`DIRECTIONS`] load directions (then raised by `inflate_rows`).
     fn build_shapes<P: Real>(
         &mut self,
         cfg: &ControllerConfig,

@@ -155,6 +155,17 @@ impl<T: Real> Capacity<T> {
         cfg: &ControllerConfig,
         t: &Tables<'_, T>,
     ) -> Result<usize, TableError> {
+        let shapes = Self::check_sizes(cfg, t)?;
+        Self::check_forces(cfg, t.force_n)?;
+        Self::check_arms(t.arm_m, t.inv_arm_per_m)?;
+        Self::check_aspect_pos(t.aspect_pos, shapes)?;
+        Self::check_surface(cfg, t)?;
+        Ok(shapes)
+    }
+
+    /// Every table's length against `cfg`'s node and aspect counts; returns the number of
+    /// table-mode rows (0 in ellipse mode).
+    fn check_sizes(cfg: &ControllerConfig, t: &Tables<'_, T>) -> Result<usize, TableError> {
         let nodes = usize::from(cfg.force_nodes);
         let size = |what, len: usize, expected: usize| {
             if len == expected {
@@ -192,29 +203,43 @@ impl<T: Real> Capacity<T> {
             });
         }
         size("inv_radius", t.inv_radius.len(), shapes)?;
-        let bad = |what, index| Err(TableError::Invalid { what, index });
+        Ok(shapes)
+    }
+
+    /// The node forces \[N\]: finite, strictly increasing from above 0, and ending at
+    /// `cfg`'s `N_min` and `N_max` (as `T`).
+    fn check_forces(cfg: &ControllerConfig, force_n: &[T]) -> Result<(), TableError> {
         let mut prev = T::zero();
-        for (i, &n) in t.force_n.iter().enumerate() {
+        for (i, &n) in force_n.iter().enumerate() {
             if !(n > prev && n.is_finite()) {
-                return bad("force_n", i);
+                return Err(TableError::Invalid {
+                    what: "force_n",
+                    index: i,
+                });
             }
             prev = n;
         }
-        if t.force_n.first() != Some(&T::of(cfg.n_min_n)) {
+        if force_n.first() != Some(&T::of(cfg.n_min_n)) {
             return Err(TableError::Mismatch { param: "n_min_n" });
         }
-        if t.force_n.last() != Some(&T::of(cfg.n_max_n)) {
+        if force_n.last() != Some(&T::of(cfg.n_max_n)) {
             return Err(TableError::Mismatch { param: "n_max_n" });
         }
-        for (what, v) in [("arm_m", t.arm_m), ("inv_arm_per_m", t.inv_arm_per_m)] {
+        Ok(())
+    }
+
+    /// The moment arms \[m\] and their stored inverses: positive, finite, each pair's
+    /// product 1 (to f32 rounding), the arms not falling with the force.
+    fn check_arms(arm_m: &[T], inv_arm_per_m: &[T]) -> Result<(), TableError> {
+        for (what, v) in [("arm_m", arm_m), ("inv_arm_per_m", inv_arm_per_m)] {
             if let Some(i) = v.iter().position(|&x| !(x > T::zero() && x.is_finite())) {
-                return bad(what, i);
+                return Err(TableError::Invalid { what, index: i });
             }
         }
         // The arm and its stored inverse agree (to f32 rounding); the arm grows with the
-        // force (a = c·N^γ, γ ≥ 0) and the aspect l/a, hence its position, falls.
+        // force (a = c·N^γ, γ ≥ 0).
         let tol = T::of(1e-5);
-        for (i, (&r, &ir)) in t.arm_m.iter().zip(t.inv_arm_per_m).enumerate() {
+        for (i, (&r, &ir)) in arm_m.iter().zip(inv_arm_per_m).enumerate() {
             if !((r * ir - T::one()).abs() <= tol) {
                 return Err(TableError::Inconsistent {
                     check: "arm_m × inv_arm_per_m = 1",
@@ -222,7 +247,7 @@ impl<T: Real> Capacity<T> {
                 });
             }
         }
-        for (i, w) in t.arm_m.windows(2).enumerate() {
+        for (i, w) in arm_m.windows(2).enumerate() {
             if let [a, b] = w {
                 if *b < *a * (T::one() - tol) {
                     return Err(TableError::Inconsistent {
@@ -232,7 +257,14 @@ impl<T: Real> Capacity<T> {
                 }
             }
         }
-        for (i, w) in t.aspect_pos.windows(2).enumerate() {
+        Ok(())
+    }
+
+    /// The aspect positions: not rising with the force (the aspect l/a falls as the arm
+    /// grows), and within `[0, shapes − 1]` up to rounding.
+    fn check_aspect_pos(aspect_pos: &[T], shapes: usize) -> Result<(), TableError> {
+        let tol = T::of(1e-5);
+        for (i, w) in aspect_pos.windows(2).enumerate() {
             if let [a, b] = w {
                 if *b > *a + tol {
                     return Err(TableError::Inconsistent {
@@ -246,13 +278,22 @@ impl<T: Real> Capacity<T> {
         // lookup clamps them.
         let slack = T::of(1e-3);
         let last_pos = T::of_usize(shapes.saturating_sub(1)) + slack;
-        if let Some(i) = t
-            .aspect_pos
+        if let Some(i) = aspect_pos
             .iter()
             .position(|&x| !(x >= -slack && x <= last_pos))
         {
-            return bad("aspect_pos", i);
+            return Err(TableError::Invalid {
+                what: "aspect_pos",
+                index: i,
+            });
         }
+        Ok(())
+    }
+
+    /// The surface: every inverse radius positive and finite, and the demand scales at
+    /// least 1 (exactly 1 in table mode).
+    fn check_surface(cfg: &ControllerConfig, t: &Tables<'_, T>) -> Result<(), TableError> {
+        let bad = |what, index| Err(TableError::Invalid { what, index });
         for (r, row) in t.inv_radius.iter().enumerate() {
             if row.iter().any(|&x| !(x > T::zero() && x.is_finite())) {
                 return bad("inv_radius", r);
@@ -270,7 +311,7 @@ impl<T: Real> Capacity<T> {
         {
             return bad("demand_scale", i);
         }
-        Ok(shapes)
+        Ok(())
     }
 
     pub(super) fn fill_inv_width(&mut self) {

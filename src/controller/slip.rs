@@ -1,65 +1,35 @@
-//! Closing the loop on slip: what the controller believes about `μ` and how much margin
-//! it keeps, and how a slip signal from a tactile sensor changes both.
+//! Closing the loop on slip: the controller's belief `μ̂` about friction, the margin it
+//! keeps on the safety factor, and how a tactile sensor's slip signal changes both.
 //!
-//! The configured `μ` is a belief, rarely better than ±30 % (skin, oil, dust, wear). A
-//! tactile skin can say when the contact starts to slip (*incipient*: the edge of the
-//! patch slides while its centre sticks) or slides as a whole (*gross*). On such a signal
-//! the controller
-//! 1. on a gross slip, or an incipient one that persists past a first step of the margin
-//!    (a single incipient report is often a transient: a load that rose faster than the
-//!    grip), lowers its estimate `μ̂` to what is consistent with the load at which the
-//!    contact slipped: the load had utilisation `u` under the belief `μ̂`, and a contact slips at
-//!    utilisation 1, so `μ̂ ← μ̂·u` (never above the present estimate, never below
-//!    [`MU_FLOOR_FRACTION`] of the configured `μ`). A sensor reports a slip some
-//!    milliseconds after it began, while the command may already have risen, so `u` is the
-//!    highest utilisation of the last [`LOOKBACK_S`] to 2·[`LOOKBACK_S`] (the moment the
-//!    contact slipped is among them). For an incipient slip, which starts below the true
-//!    limit, this errs low, on the safe side. A signal at a load below
-//!    [`PLAUSIBLE_UTILISATION`] cannot be a slip of that load (a false alarm, or a load the
-//!    sensor did not see): it changes the margin only.
-//! 2. multiplies its safety factor by a margin raised at once by [`MARGIN_STEP_INCIPIENT`]
-//!    or [`MARGIN_STEP_GROSS`] (at most [`MARGIN_MAX`]); the command jumps to the new
-//!    requirement in the same tick, past the rise-rate limit (the *emergency rise*, still
-//!    capped by `N_max`).
+//! A signal is *incipient* (the patch's edge slides, its centre sticks) or *gross* (the
+//! object slides or turns). `u` is the highest utilisation (under the present `μ̂`, no
+//! safety factor) of the last [`LOOKBACK_S`] to 2·[`LOOKBACK_S`]: a sensor reports a slip
+//! after it began. On a signal the controller
 //!
-//! An incipient report is acted on once it has lasted [`INCIPIENT_CONFIRM_S`] (two ticks
-//! at 1 kHz): a one-tick report is taken as sensor noise, the usual debounce of slip
-//! detectors. A gross report is acted on at once.
+//! 1. raises the margin by [`MARGIN_STEP_INCIPIENT`] or [`MARGIN_STEP_GROSS`] (at most
+//!    [`MARGIN_MAX`]); the command jumps to the new requirement in the same tick, past the
+//!    rise-rate limit (the *emergency rise*, still capped by `N_max`);
+//! 2. on a gross slip, or an incipient one that persists past a first step of the margin,
+//!    lowers `μ̂ ← μ̂·u` (never above the present `μ̂`, never below [`MU_FLOOR_FRACTION`]
+//!    of the configured `μ`), unless `u` < [`PLAUSIBLE_UTILISATION`] (not a slip of that
+//!    load: margin only);
+//! 3. takes an incipient report at `u` < [`CREEP_UTILISATION`] as *creep* (a soft patch's
+//!    edge sliding long before the contact does): the margin rises at most to
+//!    [`CREEP_MARGIN_MAX`], `μ̂` does not move, and a margin above that cap relaxes toward
+//!    it as it would toward 1 in silence.
 //!
-//! **Creep is not slip.** On a soft contact the lightly pressed edge of the patch slides
-//! long before the contact does (partial slip grows with the load from zero, as in
-//! Cattaneo and Mindlin's contact), and a tactile sensor that thresholds a slip velocity
-//! or a slipping area reports it as incipient slip, persistently, for as long as the load
-//! stays. Taken as slip, such a signal drove the margin to [`MARGIN_MAX`] and `μ̂` to its
-//! floor, costing 2–4 × the force the load needs. So an incipient report at a recent
-//! utilisation below [`CREEP_UTILISATION`] (under the present belief) is creep: it raises
-//! the margin at most to [`CREEP_MARGIN_MAX`] and is no evidence about `μ`. A gross
-//! report, and an incipient one at a load near the limit, get the full response: `μ̂`
-//! moves only on a signal consistent with the limit surface, a load at utilisation
-//! close to 1 under the present belief (or a gross slip, which is the limit reached). If
-//! the true `μ` is so far below the belief that the contact creeps at a believed
-//! utilisation under 0.7, the gross slip that follows is what teaches the controller.
-//! Nor does creep hold up a margin that a real slip raised: once the slip is over, the
-//! sensor often goes on reporting creep at the now lower utilisation, and the margin, a
-//! guard for the moments after a slip, then relaxes to [`CREEP_MARGIN_MAX`] as it would
-//! to 1 in silence (it used to stay at the slip's value for as long as the creep lasted:
-//! 18 % more force in `tests/creep.rs`). `μ̂` keeps what the slip taught while the sensor
-//! reports anything; it relaxes only in silence.
+//! Timing: an incipient report counts once it has lasted [`INCIPIENT_CONFIRM_S`], a gross
+//! one at once; a persisting signal steps again only after [`REFRACTORY_S`]. After
+//! [`MARGIN_QUIET_S`] with no signal the margin relaxes toward 1 (time constant
+//! [`MARGIN_RELAX_TAU_S`]); after [`QUIET_S`] of silence `μ̂` relaxes toward `μ` (time
+//! constant [`RELAX_TAU_S`]). Once both are within `1e-4` of their configured values they
+//! snap back, and the commands are bit for bit those of a controller that never saw a
+//! slip; with no signal ever, nothing here changes a bit
+//! (`tests/robust_grip.rs::after_relaxing_a_slip_the_commands_are_bit_identical`).
 //!
-//! A signal that persists steps the margin and the estimate again only after
-//! [`REFRACTORY_S`]: the actuator needs that long to act on the first step, and the
-//! load measured meanwhile sits on a force that is already rising.
-//!
-//! The margin is a short guard for the moments after a slip, while the actuator and the
-//! estimate catch up: after [`MARGIN_QUIET_S`] with no slip signal it relaxes back toward
-//! 1 with the time constant [`MARGIN_RELAX_TAU_S`]. The estimate `μ̂` is evidence about the
-//! contact and is kept longer: after [`QUIET_S`] with no slip signal it relaxes back toward
-//! the configured `μ` with the time constant [`RELAX_TAU_S`]. Once both are within 1e-4 of
-//! their configured values they snap back exactly, and the controller is again bit for bit
-//! the one that never saw a slip. With no slip signal ever, nothing here changes a single
-//! bit of the commands.
-//!
-//! Cost per tick: a few comparisons; a division on a tick that changes `μ̂`.
+//! Shown by `tests/robust_grip.rs` and `tests/creep.rs`; the values are
+//! docs/decisions/slip-response-steps.md. Cost per tick: a few comparisons; a division on
+//! a tick that changes `μ̂`.
 
 use crate::controller::math::{greater, lesser};
 use crate::real::Real;
@@ -89,39 +59,41 @@ impl SlipSignal {
     }
 }
 
-/// Margin added on an incipient slip signal (to a margin that starts at 1).
+/// Margin added on a confirmed incipient slip (to a margin that starts at 1) \[-\]
+/// (docs/decisions/slip-response-steps.md).
 pub const MARGIN_STEP_INCIPIENT: f64 = 0.05;
-/// Margin added on a gross slip signal.
+/// Margin added on a gross slip \[-\] (docs/decisions/slip-response-steps.md).
 pub const MARGIN_STEP_GROSS: f64 = 0.3;
-/// The largest margin (the command is capped by `N_max` in any case).
+/// The largest margin \[-\]; the command is capped by `N_max` in any case.
 pub const MARGIN_MAX: f64 = 3.0;
-/// The lowest `μ̂`, as a fraction of the configured `μ`.
+/// The lowest `μ̂`, as a fraction of the configured `μ` \[-\]
+/// (docs/decisions/slip-response-steps.md).
 pub const MU_FLOOR_FRACTION: f64 = 0.5;
-/// A slip signal at a utilisation below this (under the present belief) is not taken as
-/// evidence about `μ`.
+/// A slip at a utilisation below this is no evidence about `μ` \[-\]: a false alarm or a
+/// load the sensor did not see (`tests/robust_grip.rs::a_false_alarm_does_not_lower_mu`).
 pub const PLAUSIBLE_UTILISATION: f64 = 0.4;
-/// An incipient report at a utilisation below this (the recent peak, under the present
-/// belief) is creep: the soft patch's edge sliding at a moderate load, which a tactile
-/// sensor reports for as long as the load stays. It raises the margin at most to
-/// [`CREEP_MARGIN_MAX`] and never moves `μ̂`.
+/// An incipient report at a recent utilisation below this is creep, not slip \[-\]
+/// (`tests/creep.rs`; docs/decisions/slip-response-steps.md).
 pub const CREEP_UTILISATION: f64 = 0.7;
-/// The most margin creep alone can ask for.
+/// The most margin creep alone can ask for \[-\] (`tests/creep.rs`).
 pub const CREEP_MARGIN_MAX: f64 = 1.1;
-/// How long an incipient report must persist before it is acted on \[s\]: a shorter one is
-/// taken as sensor noise (a gross report is acted on at once).
+/// How long an incipient report must persist before it counts \[s\]: two ticks at
+/// 1 kHz, the usual debounce of slip detectors (docs/decisions/slip-response-steps.md).
 pub const INCIPIENT_CONFIRM_S: f64 = 0.002;
-/// How far back the utilisation at which a reported slip happened is looked for \[s\]
-/// (between one and two of these): covers a sensor latency of up to this much.
+/// How far back the utilisation of a reported slip is looked for (one to two of these)
+/// \[s\]: covers a sensor latency up to this (docs/decisions/slip-response-steps.md).
 pub const LOOKBACK_S: f64 = 0.01;
-/// Least time between two steps of the margin while a signal persists \[s\].
+/// Least time between two steps of the margin while a signal persists \[s\]: the
+/// actuator's time to act on the first (docs/decisions/slip-response-steps.md).
 pub const REFRACTORY_S: f64 = 0.02;
-/// Slip-free time before the margin starts to relax \[s\].
+/// Slip-free time before the margin starts to relax \[s\]
+/// (docs/decisions/slip-response-steps.md).
 pub const MARGIN_QUIET_S: f64 = 0.1;
-/// Time constant of the margin's relaxation \[s\].
+/// Time constant of the margin's relaxation \[s\] (docs/decisions/slip-response-steps.md).
 pub const MARGIN_RELAX_TAU_S: f64 = 0.2;
-/// Slip-free time before the estimate `μ̂` starts to relax \[s\].
+/// Slip-free time before `μ̂` starts to relax \[s\] (docs/decisions/slip-response-steps.md).
 pub const QUIET_S: f64 = 1.0;
-/// Time constant of the estimate's relaxation \[s\].
+/// Time constant of `μ̂`'s relaxation \[s\] (docs/decisions/slip-response-steps.md).
 pub const RELAX_TAU_S: f64 = 5.0;
 
 /// The controller's belief about friction and its margin, and how slip changes them.

@@ -1,74 +1,71 @@
-//! What the actuator does with the command: its lag and slew, identified online from the
-//! commanded and the measured normal force, so that the lead ([`lead`](super::lead))
-//! works through an actuator nobody described.
+//! What the actuator does with the command: its lag `τ` and slew `r`, identified online
+//! from the commanded and the measured normal force, so that the lead
+//! ([`lead`](super::lead)) works through an actuator nobody described.
 //!
-//! The model is a first-order lag `τ` with a slew limit `r`: the force moves toward the
-//! command at `(u − N)/τ`, never faster than `r`. Each good tick gives the command `u` of
-//! the tick before and the measured force `N`; both pass through the same low-pass filter
-//! (time constant [`FILTER_TAU_S`], so its delay cancels between them) into `ū` and `N̄`,
-//! and the filtered rate `Ṅ = ΔN̄/dt`. Only a tick on which the command moves
-//! (`|u̇| ≥` [`RATE_MIN_N_PER_S`], filtered; the command's rate, which the force sensor's
-//! noise does not touch) and the force moves toward it (`Ṅ` with the sign of the gap
-//! `e = ū − N̄`) says anything. Then:
+//! Model: a first-order lag with a slew limit; the force moves toward the command `u` at
+//! `(u − N)/τ`, never faster than `r`. The command of the tick before and the measured
+//! force pass through the same low-pass ([`FILTER_TAU_S`], so its delay cancels) into `ū`
+//! and `N̄`; `Ṅ = ΔN̄/dt` and the gap `e = ū − N̄`. A tick is a sample only when the
+//! filtered command moves at [`RATE_MIN_N_PER_S`] or more (the command's rate, which
+//! sensor noise does not touch) and `Ṅ` has the sign of `e`. Then:
 //!
-//! - **slew**: once the lag rests on [`LAG_SAMPLES_FOR_SLEW`] samples, a tick whose gap
-//!   exceeds [`SLEW_GAP_N`] while `Ṅ` is under [`SLEW_RATE_SHARE`] of what the lag would
-//!   give (`e/τ̂`), in a stretch of at least [`SLEW_RUN_TICKS`] such ticks, is
-//!   slew-limited; its rate is a sample of `r`, and `r̂` follows them up fast and down
-//!   slowly ([`SLEW_GAIN`] per sample up, an eighth of it down: the ticks that enter or
-//!   leave a slewing stretch move slower than the slew). Without such a tick `r̂` stays at
-//!   the configured `actuator_slew_n_per_s` (∞ when not given);
-//! - **lag**: any other such tick is a sample of `e = τ·Ṅ`; `τ̂ = Σ e·Ṅ / Σ Ṅ²` over the
-//!   samples, each new sample weighing the sums down by `1 − 1/`[`MEMORY_SAMPLES`],
-//!   started from the configured `actuator_lag_s` with the weight of [`PRIOR_SAMPLES`]
-//!   samples at [`PRIOR_RATE_N_PER_S`]. A lag of 0 says "not told", not "no lag": the
-//!   sums then start from [`UNTOLD_LAG_S`] with the weight of [`UNTOLD_PRIOR_SAMPLES`]
-//!   samples, so the first rise of the load, which comes before any sample (the command
-//!   sits at `N_min` until the load needs more), is led as a typical soft-finger actuator
-//!   would need, and the actuator's own samples outweigh the guess within a few ticks
-//!   of moving. To describe an ideal actuator, give a lag under [`LAG_FLOOR_TICKS`]
-//!   ticks (one tick, say): it is never led. A slew
-//!   that binds before the lag is known makes `τ̂` the effective delay of closing the gap
-//!   at that slew, which is what the lead needs.
+//! - **slew**: once the lag rests on [`LAG_SAMPLES_FOR_SLEW`] samples, a run of at least
+//!   [`SLEW_RUN_TICKS`] ticks with `|e|` > [`SLEW_GAP_N`] and `|Ṅ|` under
+//!   [`SLEW_RATE_SHARE`] of `|e|/τ̂` is slew-limited; each such tick's rate is a sample of
+//!   `r`, which `r̂` follows up by [`SLEW_GAIN`] and down by an eighth of it. Until then
+//!   `r̂` is the configured `actuator_slew_n_per_s` (∞ when not given).
+//! - **lag**: any other sample gives `e = τ·Ṅ`; `τ̂ = Σ e·Ṅ / Σ Ṅ²`, each new sample
+//!   weighing the sums down by `1 − 1/`[`MEMORY_SAMPLES`], started from the configured
+//!   `actuator_lag_s` with the weight of [`PRIOR_SAMPLES`] samples at
+//!   [`PRIOR_RATE_N_PER_S`]. A lag of 0 says "not told": the sums start from
+//!   [`UNTOLD_LAG_S`] weighing [`UNTOLD_PRIOR_SAMPLES`] samples, so the load's first rise
+//!   is led before any sample.
+//! - `τ̂` below [`LAG_FLOOR_TICKS`] ticks is an ideal actuator: the lead gets 0 and changes
+//!   no command. To describe an ideal actuator, give a lag of one tick.
 //!
-//! An actuator that follows the command within a tick (the measurement is then the last
-//! command plus noise) gives `τ̂` of about one tick; below [`LAG_FLOOR_TICKS`] ticks the
-//! lead takes the actuator as ideal, so such an actuator changes no command. Sensor noise
-//! of 0.05 N on the normal force moves `Ṅ` by about 12 N/s after the filter, under the
-//! rate floor. A bad, stale or missing measurement updates nothing.
+//! A bad, stale or missing measurement updates nothing. What `tests/actuator_id.rs`
+//! asserts, with 0.02 N of noise on every channel: from a prior of 0 or twice the truth,
+//! `τ̂` within 30 % of a 10, 30 or 60 ms lag, both 0.2 s into the first lift and after two
+//! lifts (`the_lag_is_found_from_a_wrong_prior`); `r̂` within 15 % of a 100 N/s slew that
+//! binds after a light lift, with `τ̂` within 50 % (`a_slew_that_binds_is_found`); an
+//! untold 25 ms lag within 25 % (`an_untold_actuator_is_led_through_a_lift_and_a_shake`);
+//! an ideal actuator changes no command (`an_ideal_actuator_changes_no_command`).
+//! `cargo test --release --test actuator_id -- --nocapture` prints the figures.
 //!
-//! Accuracy (0.02 N of noise on every channel): from a prior of 0 or of twice the truth,
-//! `τ̂` comes within 12 % of a 10, 30 or 60 ms lag by the end of two lifts, and `r̂`
-//! within 4 % of a 100 N/s slew that binds after a light lift showed the lag
-//! (`cargo test --release --test actuator_id -- --nocapture` prints the figures). Cost per
-//! tick: two filters and a comparison; on a tick that is a sample, about ten more
-//! operations and one division.
+//! Cost per tick: two filters and a comparison; on a sample, about ten more operations and
+//! one division.
 
 use crate::real::Real;
 
-/// Time constant of the filter on the command and the measured force \[s\].
+/// Time constant of the filter on the command and the measured force \[s\]
+/// (`tests/actuator_id.rs`).
 pub const FILTER_TAU_S: f64 = 0.004;
-/// Least filtered rate of the command at which a tick is a sample of the actuator [N/s].
+/// Least filtered rate of the command at which a tick is a sample \[N/s\]
+/// (`tests/actuator_id.rs`).
 pub const RATE_MIN_N_PER_S: f64 = 30.0;
-/// Least gap between the filtered command and force on a slew-limited tick \[N\].
+/// Least gap between the filtered command and force on a slew-limited tick \[N\]
+/// (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const SLEW_GAP_N: f64 = 0.3;
-/// Ticks in a row that must look slew-limited before they are taken as slew samples.
+/// Ticks in a row that must look slew-limited before they are slew samples: a command that
+/// jumps looks slew-limited for a tick or two.
 pub const SLEW_RUN_TICKS: u8 = 5;
-/// A tick is slew-limited when its rate is under this share of what the lag would give.
+/// A tick is slew-limited when its rate is under this share of the lag's `|e|/τ̂` \[-\]
+/// (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const SLEW_RATE_SHARE: f64 = 0.6;
-/// Weight of a new slew sample in the running mean of `r̂`.
+/// Weight of a new, faster slew sample in `r̂` \[-\]; a slower one weighs an eighth of
+/// it (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const SLEW_GAIN: f64 = 0.2;
-/// How many samples the lag's sums remember (each new sample weighs the old ones down by
-/// `1 − 1/MEMORY_SAMPLES`).
+/// How many samples the lag's sums remember: each new one weighs the old ones down by
+/// `1 − 1/MEMORY_SAMPLES`.
 pub const MEMORY_SAMPLES: f64 = 400.0;
-/// The prior lag's weight, in samples.
+/// A told lag's weight as a prior, in samples.
 pub const PRIOR_SAMPLES: f64 = 20.0;
-/// The rate at which the prior's samples count [N/s].
+/// The rate at which the prior's samples count \[N/s\].
 pub const PRIOR_RATE_N_PER_S: f64 = 50.0;
-/// Lag samples needed before a tick can be judged slew-limited (the judgement compares
-/// the rate with the lag's).
+/// Lag samples needed before a tick can be judged slew-limited (the judgement uses `τ̂`).
 pub const LAG_SAMPLES_FOR_SLEW: u16 = 50;
-/// Identified lags below this many tick periods are an ideal actuator (no lead).
+/// Identified lags below this many tick periods are an ideal actuator: no lead
+/// (`tests/actuator_id.rs::an_ideal_actuator_changes_no_command`).
 pub const LAG_FLOOR_TICKS: f64 = 2.5;
 
 /// `1/x`, 0 for an infinite `x`.
@@ -80,7 +77,7 @@ fn inv(x: f64) -> f64 {
     }
 }
 
-/// The weight of the prior lag in the lag's sums [(N/s)²]: [`PRIOR_SAMPLES`] samples at
+/// The weight of the prior lag in the lag's sums \[(N/s)²\]: [`PRIOR_SAMPLES`] samples at
 /// [`PRIOR_RATE_N_PER_S`] for a configured lag; [`UNTOLD_PRIOR_SAMPLES`] for
 /// `actuator_lag_s = 0`, which says "not told", not "no lag".
 fn prior_weight(actuator_lag_s: f64) -> f64 {
@@ -92,22 +89,12 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
 }
 
 /// The lag assumed of an actuator nobody described (`actuator_lag_s = 0`) until its own
-/// samples say otherwise \[s\]: what tendon, cable and geared-motor grippers take to follow
-/// a step of force (tens of milliseconds), at the slow end, since the lead that guess
-/// buys is also all the first rise gets for a slew limit nobody described either.
-/// Without a guess the first lift through a slow actuator nobody described starts unled
-/// from `N_min`: on the bench's `shake` family (untold 5–30 ms actuators slewing at
-/// 100–500 N/s) that lift-off slip dropped 5 of 30 trials in ellipse mode at safety 1.3
-/// on a held-out seed (101), 1 of 30 with a 20 ms guess (`bench --family shake --seeds
-/// 101 --trials 30`). On held-out seeds 101–404, table mode, 40 ms instead of 20 ms
-/// took the `shake` drops at safety 1.2, 1.25, 1.3 and 1.35 from 22, 16, 10 and 5 of
-/// 120 to 8, 5, 4 and 3 (8 % more force there at 1.2, 1 % less from 1.35), and 60 ms did
-/// no better. The cost through an ideal actuator is the lead on each rise of the load
-/// that moves the command slower than the identifier's [`RATE_MIN_N_PER_S`]: 0.2 % more
-/// force on the `lift-hold` family than with 20 ms.
+/// samples say otherwise \[s\]: the slow end of tendon, cable and geared-motor grippers,
+/// and the lead the first rise gets for an undescribed slew too
+/// (docs/decisions/untold-actuator-lag.md).
 pub const UNTOLD_LAG_S: f64 = 0.04;
-/// The weight of [`UNTOLD_LAG_S`], in samples: a guess, outweighed by the actuator's
-/// own first samples.
+/// The weight of [`UNTOLD_LAG_S`], in samples: a guess the actuator's own first samples
+/// outweigh (docs/decisions/untold-actuator-lag.md).
 pub const UNTOLD_PRIOR_SAMPLES: f64 = 2.0;
 
 /// The lag the identifier starts from: the configured one, or [`UNTOLD_LAG_S`] when not told.
@@ -196,7 +183,7 @@ impl<T: Real> ActuatorId<T> {
         self
     }
 
-    /// The identified lag `τ̂` [s] (0 for an actuator faster than the floor).
+    /// The identified lag `τ̂` \[s\] (0 for an actuator faster than the floor).
     #[inline]
     pub(crate) fn lag_s(&self) -> T {
         self.lead_lag
@@ -211,14 +198,14 @@ impl<T: Real> ActuatorId<T> {
         }
     }
 
-    /// The identified slew `r̂` [N/s] (the prior, ∞ when not given, until a slew-limited
+    /// The identified slew `r̂` \[N/s\] (the prior, ∞ when not given, until a slew-limited
     /// tick is seen).
     #[inline]
     pub(crate) fn slew_n_per_s(&self) -> T {
         self.slew
     }
 
-    /// `1/r̂` [s/N] (0 for an actuator that is not slew-limited).
+    /// `1/r̂` \[s/N\] (0 for an actuator that is not slew-limited).
     #[inline]
     pub(crate) fn inv_slew(&self) -> T {
         self.inv_slew

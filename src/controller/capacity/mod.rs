@@ -26,9 +26,8 @@
 //!   conservative; `tests/controller.rs` measures it against the exact surface).
 //! - Outside `[N_min, N_max]` the arm is extended by conservative bounds: `R ∝ N` below
 //!   (`R` constant for `γ = 0`) and `R = R(N_max)` above. The answers there are closed forms.
-
 //!
-//! The module is split by what each part does: [`build`](self) precomputes the grid at
+//! The module is split by what each part does: `build` precomputes the grid at
 //! start-up (the moment arms, table mode's surfaces, ellipse mode's inscribed ellipse),
 //! `tables` exports and imports it as plain arrays and checks imported ones, and this file
 //! holds the grid and the per-tick solve.
@@ -51,19 +50,21 @@ pub const MAX_ASPECTS: usize = 12;
 pub const DIRECTIONS: usize = 33;
 /// Most centres of rotation in one start-up sweep (table mode).
 pub const MAX_TABLE_SAMPLES: usize = 128;
-/// Most iterations of the Illinois step in one solve in f64. The tolerance (8 ulp of the
-/// answer) is met in 3 to 4 on average and in at most 8 over the 140 000 loads of
-/// `tests/controller.rs` (which fails above 12); the cap bounds the worst case.
+/// Most iterations of the Illinois step in one solve in f64; it bounds the worst case. The
+/// tolerance (8 ulp of the answer) is met well below it: the test fails above 12
+/// (`tests/controller.rs::solves_stay_far_below_the_iteration_cap`, which prints the figures).
 pub const MAX_ILLINOIS_ITERATIONS: u8 = 16;
-/// Most iterations of the Illinois step in one solve in f32, the firmware's precision. Its
-/// 8-ulp tolerance is met in at most 5 over the same loads (the test fails above 5), so
-/// the cap is one above that; it bounds the worst tick, which the cost table of
-/// docs/firmware-costs.md measures with every solve run to this cap (the `solve-to-cap` feature). A solve that
-/// reaches a cap returns the upper end of its bracket, where the load holds: more force
-/// than the tolerance would give, never less. On the default grid no solve reaches it; on
-/// a grid 5.6 times coarser in `ln N` (64 nodes over 1e-9 to 1e6 N) 39 % do, asking at most
-/// 0.14 % more force than the converged f64 answer (`tests/controller.rs`,
-/// `the_f32_iteration_cap_costs_...`).
+/// Most iterations of the Illinois step in one solve in f32, the firmware's precision: one
+/// above the most its 8-ulp tolerance needs over the same loads (the test fails above 5,
+/// `tests/controller.rs::solves_stay_far_below_the_iteration_cap`). It bounds the worst
+/// tick, which docs/firmware-costs.md measures with every solve run to this cap (the
+/// `solve-to-cap` feature).
+///
+/// A solve that reaches a cap returns the upper end of its bracket, where the load holds:
+/// more force than the tolerance would give, never less. On a grid far coarser than the
+/// default (64 nodes over 1e-9 to 1e6 N) some solves reach it, and ask at most 1 % more
+/// force than the converged f64 answer, never less
+/// (`tests/controller.rs::the_f32_iteration_cap_costs_at_most_one_percent_of_force_and_never_under_asks`).
 pub const MAX_ILLINOIS_ITERATIONS_F32: u8 = 6;
 
 /// The iteration cap of one solve in `T`: [`MAX_ILLINOIS_ITERATIONS_F32`] for f32,
@@ -411,9 +412,9 @@ impl<T: Real> Capacity<T> {
 
     /// The Illinois run inside interval `j`. The interval is read once, before the run:
     /// its steps then interpolate from registers instead of reading and bounds-checking
-    /// the arrays again. With the utilisation's one-comparison cap this took the M4F's
-    /// capped ticks from 1 988 / 4 850 to 1 824 / 4 607 instructions (ellipse / table,
-    /// `firmware_costs`). Same values, same operations: the same answer bit for bit.
+    /// the arrays again, which the M4F's capped ticks need
+    /// (`host-sim/tests/firmware_costs.rs`). Same values, same operations: the same
+    /// answer bit for bit.
     fn illinois_in<const TABLE: bool>(&self, f: T, m: T, j: usize) -> Solution<T> {
         let iv = self.interval(j);
         let ([a, b], [arm_a, arm_b], [pos_a, pos_b]) = (iv.force_n, iv.arm_m, iv.pos);

@@ -400,35 +400,38 @@ fn the_wilson_interval_brackets_the_rate() {
     assert!((lo - 0.2993).abs() < 1e-3 && (hi - 0.7007).abs() < 1e-3);
 }
 
-/// The clairvoyant constant grip: per holdable trial, the least constant of the grid that
-/// holds it (a reference), here on three hand-made trials against a grid of 1, 2 and 3 N
-/// beside a softgrip sweep whose columns it must skip.
-#[test]
-fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
-    use host_sim::bench::sweep::{RunRow, Sweep, TrialResult};
+/// A softgrip sweep (safety 1 and 2) beside a constant grip of 1, 2 and 3 N, for the
+/// clairvoyant constant's tests.
+fn softgrip_and_constant_sweeps() -> [sweep::Sweep; 2] {
     use host_sim::sim::controllers::ControllerKind;
-    let sweeps = [
-        Sweep {
+    [
+        sweep::Sweep {
             controller: ControllerKind::SoftgripTable,
             knob: "safety",
             values: &[1.0, 2.0],
             default: 1.0,
         },
-        Sweep {
+        sweep::Sweep {
             controller: ControllerKind::Constant,
             knob: "force_n",
             values: &[1.0, 2.0, 3.0],
             default: 3.0,
         },
-    ];
-    let run = |dropped: bool, mean: f64| RunRow {
+    ]
+}
+
+/// A hand-made trial of [`softgrip_and_constant_sweeps`]: holdable or not, its oracle's
+/// mean force, and whether each of the three constant grips drops it; softgrip's two runs
+/// hold at 0.5 N.
+fn hand_made_trial(holdable: bool, oracle: f64, drops: [bool; 3]) -> sweep::TrialResult {
+    let run = |dropped: bool, mean: f64| sweep::RunRow {
         dropped,
         slip_events: 0,
         slip_distance_m: 0.0,
         mean_force_n: mean,
         peak_force_n: mean,
     };
-    let trial = |holdable: bool, oracle: f64, drops: [bool; 3]| TrialResult {
+    sweep::TrialResult {
         true_mu: 1.0,
         mu_ratio: 1.0,
         sensor: false,
@@ -439,21 +442,43 @@ fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
             .into_iter()
             .chain(drops.iter().zip([1.0, 2.0, 3.0]).map(|(d, n)| run(*d, n)))
             .collect(),
-    };
-    let results = [
-        trial(true, 1.0, [false, false, false]), // 1 N holds: 1.0
-        trial(true, 1.0, [true, false, false]),  // 2 N: 2.0
-        trial(true, 2.0, [true, true, false]),   // 3 N over 2 N: 1.5
-        trial(false, 1.0, [true, true, true]),   // not holdable: left out
-    ];
-    let refs: Vec<&TrialResult> = results.iter().collect();
+    }
+}
+
+/// Three holdable hand-made trials, held from 1 N (oracle 1 N), from 2 N (oracle 1 N) and
+/// from 3 N (oracle 2 N), and one not holdable.
+fn hand_made_trials() -> [sweep::TrialResult; 4] {
+    [
+        hand_made_trial(true, 1.0, [false, false, false]), // 1 N holds: 1.0
+        hand_made_trial(true, 1.0, [true, false, false]),  // 2 N: 2.0
+        hand_made_trial(true, 2.0, [true, true, false]),   // 3 N over 2 N: 1.5
+        hand_made_trial(false, 1.0, [true, true, true]),   // not holdable: left out
+    ]
+}
+
+/// The clairvoyant constant grip: per holdable trial, the least constant of the grid that
+/// holds it (a reference), here on three hand-made trials against a grid of 1, 2 and 3 N
+/// beside a softgrip sweep whose columns it must skip.
+#[test]
+fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
+    let sweeps = softgrip_and_constant_sweeps();
+    let results = hand_made_trials();
+    let refs: Vec<&sweep::TrialResult> = results.iter().collect();
     let c = stats::clairvoyant_constant("lift-hold", &sweeps, &refs).unwrap();
     assert_eq!(c.trials, 3);
     assert!((c.mean_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
     assert!((c.median_force_over_oracle - 1.5).abs() < 1e-12, "{c:?}");
     assert!(stats::clairvoyant_constant("lift-hold", &sweeps[..1], &refs).is_none());
-    // At the hand's limit with N_max = 3 N: only a trial that no grip below 95 % of it
-    // (2.85 N) holds; for a 2.1 N hand (1.995 N), the 2 N trial is one too.
+}
+
+/// At the hand's limit with N_max = 3 N: only a trial that no grip below 95 % of it
+/// (2.85 N) holds; for a 2.1 N hand (1.995 N), the 2 N trial is one too (the trials of
+/// the clairvoyant constant's test).
+#[test]
+fn a_trial_is_at_the_hands_limit_when_no_grip_below_95_percent_of_it_holds() {
+    let sweeps = softgrip_and_constant_sweeps();
+    let results = hand_made_trials();
+    let refs: Vec<&sweep::TrialResult> = results.iter().collect();
     let limit = |n_max: f64| -> Vec<Option<bool>> {
         refs.iter()
             .map(|r| stats::at_limit(&sweeps, r, n_max))
@@ -468,25 +493,31 @@ fn the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial() {
         [Some(false), Some(true), Some(true), Some(false)]
     );
     assert_eq!(stats::at_limit(&sweeps[..1], refs[2], 3.0), None);
-    // The rows count them, for the bench's hand (N_max = 20 N) and a grid of 1, 19 and
-    // 20 N: trials held from 1 N, from 19 N (95 % of N_max: at the limit), only at 20 N
-    // (at the limit), and none; softgrip's first setting drops the first two.
+}
+
+/// The rows count the trials at the hand's limit, for the bench's hand (N_max = 20 N) and
+/// a grid of 1, 19 and 20 N: trials held from 1 N, from 19 N (95 % of N_max: at the
+/// limit), only at 20 N (at the limit), and none; softgrip's first setting drops the
+/// first two.
+#[test]
+fn the_rows_count_the_trials_and_drops_at_the_hands_limit() {
+    let [softgrip, constant] = softgrip_and_constant_sweeps();
     let sweeps = [
-        sweeps[0],
-        Sweep {
+        softgrip,
+        sweep::Sweep {
             values: &[1.0, 19.0, 20.0],
-            ..sweeps[1]
+            ..constant
         },
     ];
     let mut results = [
-        trial(true, 1.0, [false, false, false]),
-        trial(true, 1.0, [true, false, false]),
-        trial(true, 1.0, [true, true, false]),
-        trial(false, 1.0, [true, true, true]),
+        hand_made_trial(true, 1.0, [false, false, false]),
+        hand_made_trial(true, 1.0, [true, false, false]),
+        hand_made_trial(true, 1.0, [true, true, false]),
+        hand_made_trial(false, 1.0, [true, true, true]),
     ];
     results[0].runs[0].dropped = true;
     results[1].runs[0].dropped = true;
-    let refs: Vec<&TrialResult> = results.iter().collect();
+    let refs: Vec<&sweep::TrialResult> = results.iter().collect();
     let rows = stats::rows("twist", None, &sweeps, &refs);
     assert_eq!(rows[0].at_limit, Some(2));
     assert_eq!(

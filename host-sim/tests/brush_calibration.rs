@@ -120,6 +120,34 @@ fn check(name: &str, toml: &str, shape_half_length_m: f64) -> Figures {
     let safe = held_out(&brush, &controller(&cal.conservative()), 2_024);
     let fc = cal.with_friction_contact("slip", &slip).unwrap();
     let friction = held_out(&brush, &controller(&fc), 2_024);
+    let outcomes = Outcomes {
+        out,
+        safe,
+        friction,
+    };
+    print_outcomes(name, &cal, &fc, &outcomes);
+    assert_within_fit_errors(name, &outcomes);
+    figures(name, &cal, &outcomes)
+}
+
+/// The held-out outcomes of one finger's three calibrations.
+struct Outcomes {
+    /// The fitted values.
+    out: Outcome,
+    /// `--conservative` values.
+    safe: Outcome,
+    /// `--friction-contact` values.
+    friction: Outcome,
+}
+
+/// Prints one finger's calibrations (`cal` fitted, `fc` with the friction contact) and
+/// their held-out outcomes.
+fn print_outcomes(name: &str, cal: &Calibration, fc: &Calibration, o: &Outcomes) {
+    let Outcomes {
+        out,
+        safe,
+        friction,
+    } = o;
     println!(
         "{name} (--friction-contact, {:?}): mu {:.4} c {:.3e} l {:.4}; held-out N_slip / \
          N_onset mean {:.3}, {} of {HELD_OUT} short, worst short {:.2} %",
@@ -151,6 +179,16 @@ fn check(name: &str, toml: &str, shape_half_length_m: f64) -> Figures {
         out.short,
         out.worst_short.max(0.0) * 100.0
     );
+}
+
+/// Each calibration short of the onset force by no more than its fit error, and the
+/// conservative values asking more on average than the fitted ones.
+fn assert_within_fit_errors(name: &str, o: &Outcomes) {
+    let Outcomes {
+        out,
+        safe,
+        friction,
+    } = o;
     assert!(
         safe.worst_short <= FIT_ERROR_CONSERVATIVE && safe.mean_ratio > out.mean_ratio,
         "{name} (--conservative): worst short {:.2} %, mean {:.3} against {:.3} fitted",
@@ -169,6 +207,15 @@ fn check(name: &str, toml: &str, shape_half_length_m: f64) -> Figures {
         out.worst_short * 100.0,
         FIT_ERROR * 100.0
     );
+}
+
+/// One finger's figures and its row of docs/calibration.md's table.
+fn figures(name: &str, cal: &Calibration, o: &Outcomes) -> Figures {
+    let Outcomes {
+        out,
+        safe,
+        friction,
+    } = o;
     let pct = |x: f64| format!("{:.1} %", x.max(0.0) * 100.0);
     Figures {
         row: format!(

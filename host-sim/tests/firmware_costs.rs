@@ -411,30 +411,25 @@ fn margin_row(rows: &[Firmware]) -> String {
     )
 }
 
-#[test]
-#[cfg_attr(
-    no_qemu_prebuilt,
-    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default prebuilt-tables solve-to-cap"
-)]
-fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
-    let Some(qemu) = common::qemu_for(&["default", "prebuilt-tables", "solve-to-cap"]) else {
-        return;
-    };
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+/// The default configuration in `mode` (both modes at the default's other settings).
+fn in_mode(mode: Mode) -> ControllerConfig {
+    ControllerConfig {
+        mode,
+        ..ControllerConfig::default()
+    }
+}
+
+/// Measures the three firmware builds in QEMU (`qemu`): the default in both modes, the
+/// prebuilt tables in table mode, and the default with every solve run to its cap.
+fn measure(qemu: &Path) -> [Firmware; 3] {
     let (default_elf, prebuilt_elf, cap_elf) = (
         host_sim::link::qemu::firmware("default"),
         host_sim::link::qemu::firmware("prebuilt-tables"),
         host_sim::link::qemu::firmware("solve-to-cap"),
     );
     // Both modes at the default's other settings.
-    let ellipse = ControllerConfig {
-        mode: Mode::Ellipse,
-        ..ControllerConfig::default()
-    };
-    let table = ControllerConfig {
-        mode: Mode::Table,
-        ..ControllerConfig::default()
-    };
+    let ellipse = in_mode(Mode::Ellipse);
+    let table = in_mode(Mode::Table);
     let ctl = |cfg| Controller::<f32, Libm>::new(cfg).unwrap();
     let (flash, static_ram) = sizes(&default_elf);
     let default = Firmware {
@@ -442,14 +437,8 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
         ticks_only: false,
         flash,
         static_ram,
-        ellipse: Some(run(
-            &qemu,
-            &default_elf,
-            ellipse,
-            ctl(ellipse),
-            Match::Exact,
-        )),
-        table: run(&qemu, &default_elf, table, ctl(table), Match::Exact),
+        ellipse: Some(run(qemu, &default_elf, ellipse, ctl(ellipse), Match::Exact)),
+        table: run(qemu, &default_elf, table, ctl(table), Match::Exact),
     };
     let (flash, static_ram) = sizes(&prebuilt_elf);
     let prebuilt = Firmware {
@@ -459,7 +448,7 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
         static_ram,
         ellipse: None,
         table: run(
-            &qemu,
+            qemu,
             &prebuilt_elf,
             table,
             Controller::<f32, Libm>::new_precomputed_in::<f64>(table).unwrap(),
@@ -471,19 +460,25 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
         ticks_only: true,
         flash: 0,
         static_ram: 0,
-        ellipse: Some(run(&qemu, &cap_elf, ellipse, ctl(ellipse), Match::Close)),
-        table: run(&qemu, &cap_elf, table, ctl(table), Match::Close),
+        ellipse: Some(run(qemu, &cap_elf, ellipse, ctl(ellipse), Match::Close)),
+        table: run(qemu, &cap_elf, table, ctl(table), Match::Close),
     };
+    [default, prebuilt, to_cap]
+}
+
+/// The firmware's toolchain channel (firmware/rust-toolchain.toml), `root` the workspace.
+fn toolchain(root: &Path) -> String {
     let toolchain = std::fs::read_to_string(root.join("firmware/rust-toolchain.toml")).unwrap();
-    let toolchain = toolchain
+    toolchain
         .lines()
         .find_map(|l| l.strip_prefix("channel = \""))
         .and_then(|l| l.strip_suffix('"'))
-        .unwrap();
-    let rows = [default, prebuilt, to_cap];
-    let table_md = render(toolchain, trace(ellipse).len(), &rows);
-    eprintln!("{table_md}");
+        .unwrap()
+        .to_string()
+}
 
+/// The docs page's cost table is `table_md` (with `SOFTGRIP_WRITE_DOCS=1`, made so).
+fn check_docs_page(root: &Path, table_md: &str) {
     let page_path = root.join(DOCS_PAGE);
     let page = std::fs::read_to_string(&page_path).unwrap_or_else(|e| panic!("{DOCS_PAGE}: {e}"));
     let (start, end) = (
@@ -493,7 +488,7 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
             .unwrap_or_else(|| panic!("{DOCS_PAGE}'s firmware-costs table has no end marker"))
             + END.len(),
     );
-    if page[start..end] != table_md {
+    if page[start..end] != *table_md {
         if std::env::var("SOFTGRIP_WRITE_DOCS").is_ok_and(|v| v == "1") {
             let new = format!("{}{table_md}{}", &page[..start], &page[end..]);
             std::fs::write(&page_path, new).unwrap();
@@ -505,6 +500,24 @@ fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
             );
         }
     }
+}
+
+#[test]
+#[cfg_attr(
+    no_qemu_prebuilt,
+    ignore = "needs QEMU and the firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh default prebuilt-tables solve-to-cap"
+)]
+fn the_readme_cost_table_is_the_measured_one_and_every_budget_holds() {
+    let Some(qemu) = common::qemu_for(&["default", "prebuilt-tables", "solve-to-cap"]) else {
+        return;
+    };
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    let rows = measure(&qemu);
+    let toolchain = toolchain(&root);
+    let table_md = render(&toolchain, trace(in_mode(Mode::Ellipse)).len(), &rows);
+    eprintln!("{table_md}");
+
+    check_docs_page(&root, &table_md);
 
     let missed = check_budgets(&rows);
     assert!(missed.is_empty(), "budgets missed: {}", missed.join(", "));

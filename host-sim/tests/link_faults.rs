@@ -157,191 +157,286 @@ fn deliver(
     c
 }
 
-#[test]
-fn a_grasp_over_a_hostile_line_stays_in_the_documented_safe_state_and_every_frame_is_counted() {
-    let cfg = ControllerConfig::default();
-    let mut link = PtyLink::spawn::<Libm>().unwrap();
-    assert_eq!(
-        link.exchange(&Request::Configure(cfg)).unwrap(),
-        Reply::Configured(Ok(()))
-    );
-    let mut direct = Controller::<f32, Libm>::new(cfg).unwrap();
-    let base = stats(&mut link);
-    let mut rng = Rng(0x11_fa17);
-    let mut ledger = Ledger::default();
-    let mut last_good: Option<SensorFrame> = None;
-    let (mut flips, mut cuts, mut merged, mut dups) = (0, 0, 0, 0);
-    let ticks = 4000u32;
-    let silence = 1500..1600u32; // 100 ms with no frame at all
-    let frozen = 2600..2660u32; // a frozen sensor: the last good frame, again and again
-    let mut frozen_seen = 0u32;
-    let mut fault_seen = false;
-    let mut last_cmd = cfg.n_min_n as f32;
-    for i in 0..ticks {
-        let f = grasp(i);
-        if silence.contains(&i) {
-            // The line is dead: the plant's frames never arrive.
-            ledger.sent += 1;
-            ledger.lost += 1;
-            if i == silence.start {
-                std::thread::sleep(Duration::from_millis(50));
-                // Nothing happened on the device meanwhile: in lockstep it ticks only on frames.
-                let s = stats(&mut link);
-                assert_eq!(u64::from(s.ticks - base.ticks), ledger.delivered);
-                assert_eq!(s.idle_ticks, 0);
-            }
-            continue;
+/// The hostile line's session: the device behind its pty, the direct controller it is
+/// checked against, the plant's ledger and the fault counts.
+struct Hostile {
+    cfg: ControllerConfig,
+    link: PtyLink,
+    direct: Controller<f32, Libm>,
+    /// The device's counters before the grasp.
+    base: Stats,
+    rng: Rng,
+    ledger: Ledger,
+    last_good: Option<SensorFrame>,
+    /// The last command the device answered.
+    last_cmd: f32,
+    /// Frames with flipped bits, truncated, with garbage run into them, stale duplicates.
+    flips: u32,
+    cuts: u32,
+    merged: u32,
+    dups: u32,
+    /// Stale frames of the frozen sensor answered so far.
+    frozen_seen: u32,
+    /// Whether the frozen sensor drove the device into its fault state.
+    fault_seen: bool,
+}
+
+impl Hostile {
+    /// A configured device and a direct controller with the same configuration.
+    fn new() -> Self {
+        let cfg = ControllerConfig::default();
+        let mut link = PtyLink::spawn::<Libm>().unwrap();
+        assert_eq!(
+            link.exchange(&Request::Configure(cfg)).unwrap(),
+            Reply::Configured(Ok(()))
+        );
+        let direct = Controller::<f32, Libm>::new(cfg).unwrap();
+        let base = stats(&mut link);
+        Self {
+            cfg,
+            link,
+            direct,
+            base,
+            rng: Rng(0x11_fa17),
+            ledger: Ledger::default(),
+            last_good: None,
+            last_cmd: cfg.n_min_n as f32,
+            flips: 0,
+            cuts: 0,
+            merged: 0,
+            dups: 0,
+            frozen_seen: 0,
+            fault_seen: false,
         }
-        if i == silence.end {
-            // After 100 ms of silence, a fresh frame is a good frame: a lockstep device
-            // does not time the silence (see above).
-            let c = deliver(&mut link, &mut direct, &cfg, &f, &mut ledger);
-            assert_eq!(c.status, Status::Ok);
+    }
+
+    /// Sends `f` intact ([`deliver`]).
+    fn deliver(&mut self, f: &SensorFrame) -> softgrip::protocol::CommandFrame {
+        deliver(
+            &mut self.link,
+            &mut self.direct,
+            &self.cfg,
+            f,
+            &mut self.ledger,
+        )
+    }
+
+    /// Sends `f` intact and takes it as the last good frame.
+    fn deliver_good(&mut self, f: &SensorFrame) -> softgrip::protocol::CommandFrame {
+        let c = self.deliver(f);
+        self.last_good = Some(*f);
+        self.last_cmd = c.normal_force_n;
+        c
+    }
+
+    /// A tick of the dead line (`first`: its first): the plant's frame never arrives.
+    fn silent(&mut self, first: bool) {
+        self.ledger.sent += 1;
+        self.ledger.lost += 1;
+        if first {
+            std::thread::sleep(Duration::from_millis(50));
+            // Nothing happened on the device meanwhile: in lockstep it ticks only on frames.
+            let s = stats(&mut self.link);
+            assert_eq!(u64::from(s.ticks - self.base.ticks), self.ledger.delivered);
+            assert_eq!(s.idle_ticks, 0);
+        }
+    }
+
+    /// The first frame after the silence.
+    fn after_silence(&mut self, f: &SensorFrame) {
+        // After 100 ms of silence, a fresh frame is a good frame: a lockstep device
+        // does not time the silence (see above).
+        let c = self.deliver_good(f);
+        assert_eq!(c.status, Status::Ok);
+        assert!(!c.fault_active);
+    }
+
+    /// A tick of the frozen sensor, in place of `f`.
+    fn frozen(&mut self, f: &SensorFrame) {
+        // The sensor repeats its last good frame (same timestamp): stale input. The
+        // command holds for stale_timeout_s / tick_period_s = 20 bad ticks, then moves
+        // to the fault force at the rise rate (0.4 N a tick), fault_active set.
+        let stale = SensorFrame {
+            seq: f.seq,
+            ..self.last_good.unwrap()
+        };
+        let c = self.deliver(&stale);
+        self.frozen_seen += 1;
+        assert_eq!(c.status, Status::StaleInput);
+        let last_cmd = self.last_cmd;
+        if self.frozen_seen < 20 {
             assert!(!c.fault_active);
-            last_good = Some(f);
-            last_cmd = c.normal_force_n;
-            continue;
+            assert_eq!(c.normal_force_n.to_bits(), last_cmd.to_bits(), "holds");
+        } else {
+            assert!(c.fault_active, "fault after 20 stale ticks");
+            self.fault_seen = true;
+            let step = (c.normal_force_n - last_cmd).abs();
+            assert!(step <= 0.4 + 1e-5, "rate-limited: {step}");
+            let fault = self.cfg.fault_force_n as f32;
+            let towards = (fault - c.normal_force_n).abs() <= (fault - last_cmd).abs();
+            assert!(towards, "heads to the fault force");
         }
-        if frozen.contains(&i) {
-            // The sensor repeats its last good frame (same timestamp): stale input. The
-            // command holds for stale_timeout_s / tick_period_s = 20 bad ticks, then moves
-            // to the fault force at the rise rate (0.4 N a tick), fault_active set.
-            let stale = SensorFrame {
-                seq: f.seq,
-                ..last_good.unwrap()
-            };
-            let c = deliver(&mut link, &mut direct, &cfg, &stale, &mut ledger);
-            frozen_seen += 1;
-            assert_eq!(c.status, Status::StaleInput);
-            if frozen_seen < 20 {
-                assert!(!c.fault_active);
-                assert_eq!(c.normal_force_n.to_bits(), last_cmd.to_bits(), "holds");
-            } else {
-                assert!(c.fault_active, "fault after 20 stale ticks");
-                fault_seen = true;
-                let step = (c.normal_force_n - last_cmd).abs();
-                assert!(step <= 0.4 + 1e-5, "rate-limited: {step}");
-                let towards = (cfg.fault_force_n as f32 - c.normal_force_n).abs()
-                    <= (cfg.fault_force_n as f32 - last_cmd).abs();
-                assert!(towards, "heads to the fault force");
-            }
-            last_cmd = c.normal_force_n;
-            continue;
-        }
-        if i == frozen.end {
-            let c = deliver(&mut link, &mut direct, &cfg, &f, &mut ledger);
-            assert_eq!((c.status, c.fault_active), (Status::Ok, false), "recovered");
-            last_good = Some(f);
-            last_cmd = c.normal_force_n;
-            continue;
-        }
-        let roll = rng.unit();
+        self.last_cmd = c.normal_force_n;
+    }
+
+    /// The first good frame after the frozen sensor.
+    fn after_frozen(&mut self, f: &SensorFrame) {
+        let c = self.deliver_good(f);
+        assert_eq!((c.status, c.fault_active), (Status::Ok, false), "recovered");
+    }
+
+    /// An ordinary tick: `f` is lost, damaged, follows garbage or a stale duplicate, or
+    /// arrives intact, at random.
+    fn ordinary(&mut self, f: &SensorFrame) {
+        let roll = self.rng.unit();
         if roll < 0.04 {
-            ledger.sent += 1;
-            ledger.lost += 1;
+            self.ledger.sent += 1;
+            self.ledger.lost += 1;
         } else if roll < 0.09 {
-            // 1 to 3 flipped bits in the block (never making a 0x00: a new delimiter would
-            // split the frame, and frames, not pieces, are counted).
-            let mut b = frame_bytes(&f);
-            for _ in 0..1 + rng.below(3) {
-                let j = rng.below(b.len() - 1);
-                let mut bit = rng.below(8);
-                if b[j] ^ (1 << bit) == 0 {
-                    bit = (bit + 1) % 8;
-                }
-                b[j] ^= 1 << bit;
-            }
-            link.inject(&b).unwrap();
-            ledger.sent += 1;
-            ledger.corrupt += 1;
-            flips += 1;
+            self.flipped(f);
         } else if roll < 0.13 {
-            // Truncated: the line drops the tail, the receiver sees the delimiter early.
-            let mut b = frame_bytes(&f);
-            let cut = 1 + rng.below(b.len() - 2);
-            b.truncate(cut);
-            b.push(0);
-            link.inject(&b).unwrap();
-            ledger.sent += 1;
-            ledger.corrupt += 1;
-            cuts += 1;
+            self.truncated(f);
         } else if roll < 0.16 {
-            // Garbage with no delimiter runs into the frame: one bad (or oversized) frame.
-            let mut b: Vec<u8> = (0..1 + rng.below(300)).map(|_| rng.nonzero()).collect();
-            b.extend(frame_bytes(&f));
-            link.inject(&b).unwrap();
-            ledger.sent += 1;
-            ledger.corrupt += 1;
-            merged += 1;
+            self.merged_garbage(f);
         } else if roll < 0.19 {
-            // A burst of garbage that ends in its own delimiter (short, or longer than the
-            // 165-byte buffer), then the frame, intact.
-            let len = if rng.below(3) == 0 {
-                166 + rng.below(400)
-            } else {
-                1 + rng.below(165)
-            };
-            let mut b: Vec<u8> = (0..len).map(|_| rng.nonzero()).collect();
-            b.push(0);
-            link.inject(&b).unwrap();
-            ledger.garbage_frames += 1;
-            ledger.long_bursts += u64::from(len > 165);
-            let c = deliver(&mut link, &mut direct, &cfg, &f, &mut ledger);
-            last_good = Some(f);
-            last_cmd = c.normal_force_n;
-        } else if roll < 0.21 && last_good.is_some() {
+            self.garbage_burst(f);
+        } else if roll < 0.21 && self.last_good.is_some() {
             // A duplicate of the last good frame arrives late, then the frame.
             let dup = SensorFrame {
                 seq: f.seq,
-                ..last_good.unwrap()
+                ..self.last_good.unwrap()
             };
-            let c = deliver(&mut link, &mut direct, &cfg, &dup, &mut ledger);
+            let c = self.deliver(&dup);
             assert_eq!(c.status, Status::StaleInput);
-            dups += 1;
-            let c = deliver(&mut link, &mut direct, &cfg, &f, &mut ledger);
-            last_good = Some(f);
-            last_cmd = c.normal_force_n;
+            self.dups += 1;
+            self.deliver_good(f);
         } else {
-            let c = deliver(&mut link, &mut direct, &cfg, &f, &mut ledger);
-            last_good = Some(f);
-            last_cmd = c.normal_force_n;
+            self.deliver_good(f);
         }
     }
-    assert!(fault_seen);
-    let s = stats(&mut link);
-    let ticks_done = u64::from(s.ticks - base.ticks);
-    let errors = u64::from(
-        (s.crc_errors - base.crc_errors)
-            + (s.decode_errors - base.decode_errors)
-            + (s.overruns - base.overruns),
-    );
-    eprintln!(
-        "{ledger:?}; flips {flips}, truncations {cuts}, merged garbage {merged}, stale \
-         duplicates {dups}; device: ticks {ticks_done}, crc {}, decode {}, overruns {}",
-        s.crc_errors - base.crc_errors,
-        s.decode_errors - base.decode_errors,
-        s.overruns - base.overruns
-    );
-    // Every sensor frame is accounted for.
-    assert_eq!(ledger.sent, ledger.delivered + ledger.corrupt + ledger.lost);
-    assert_eq!(ticks_done, ledger.delivered);
-    assert_eq!(errors, ledger.corrupt + ledger.garbage_frames);
-    // Every long burst is exactly one overrun; merged garbage may overrun too.
-    assert!(u64::from(s.overruns - base.overruns) >= ledger.long_bursts);
-    // Requests the device decoded: the sensor frames it answered and two GetStats (one
-    // during the silence, this one).
-    assert_eq!(
-        u64::from(s.frames_received - base.frames_received),
-        ledger.delivered + 2
-    );
-    // The plant's side saw only clean replies.
-    let plant = link.counters();
-    assert_eq!(plant.crc_errors + plant.decode_errors + plant.overruns, 0);
-    assert!(
-        flips > 100 && cuts > 100 && merged > 50 && dups > 50,
-        "{ledger:?}"
-    );
-    assert!(ledger.long_bursts > 20 && ledger.garbage_frames > 80);
+
+    /// Injects `b`, a damaged copy of a sensor frame.
+    fn inject_corrupt(&mut self, b: &[u8]) {
+        self.link.inject(b).unwrap();
+        self.ledger.sent += 1;
+        self.ledger.corrupt += 1;
+    }
+
+    /// 1 to 3 flipped bits in the block (never making a 0x00: a new delimiter would split
+    /// the frame, and frames, not pieces, are counted).
+    fn flipped(&mut self, f: &SensorFrame) {
+        let mut b = frame_bytes(f);
+        for _ in 0..1 + self.rng.below(3) {
+            let j = self.rng.below(b.len() - 1);
+            let mut bit = self.rng.below(8);
+            if b[j] ^ (1 << bit) == 0 {
+                bit = (bit + 1) % 8;
+            }
+            b[j] ^= 1 << bit;
+        }
+        self.inject_corrupt(&b);
+        self.flips += 1;
+    }
+
+    /// Truncated: the line drops the tail, the receiver sees the delimiter early.
+    fn truncated(&mut self, f: &SensorFrame) {
+        let mut b = frame_bytes(f);
+        let cut = 1 + self.rng.below(b.len() - 2);
+        b.truncate(cut);
+        b.push(0);
+        self.inject_corrupt(&b);
+        self.cuts += 1;
+    }
+
+    /// Garbage with no delimiter runs into the frame: one bad (or oversized) frame.
+    fn merged_garbage(&mut self, f: &SensorFrame) {
+        let rng = &mut self.rng;
+        let mut b: Vec<u8> = (0..1 + rng.below(300)).map(|_| rng.nonzero()).collect();
+        b.extend(frame_bytes(f));
+        self.inject_corrupt(&b);
+        self.merged += 1;
+    }
+
+    /// A burst of garbage that ends in its own delimiter (short, or longer than the
+    /// 165-byte buffer), then the frame, intact.
+    fn garbage_burst(&mut self, f: &SensorFrame) {
+        let rng = &mut self.rng;
+        let len = if rng.below(3) == 0 {
+            166 + rng.below(400)
+        } else {
+            1 + rng.below(165)
+        };
+        let mut b: Vec<u8> = (0..len).map(|_| rng.nonzero()).collect();
+        b.push(0);
+        self.link.inject(&b).unwrap();
+        self.ledger.garbage_frames += 1;
+        self.ledger.long_bursts += u64::from(len > 165);
+        self.deliver_good(f);
+    }
+
+    /// At the end: every sensor frame is accounted for, on both sides of the line.
+    fn check_ledger(mut self) {
+        let (base, ledger) = (self.base, &self.ledger);
+        let (flips, cuts, merged, dups) = (self.flips, self.cuts, self.merged, self.dups);
+        let s = stats(&mut self.link);
+        let ticks_done = u64::from(s.ticks - base.ticks);
+        let errors = u64::from(
+            (s.crc_errors - base.crc_errors)
+                + (s.decode_errors - base.decode_errors)
+                + (s.overruns - base.overruns),
+        );
+        eprintln!(
+            "{ledger:?}; flips {flips}, truncations {cuts}, merged garbage {merged}, stale \
+             duplicates {dups}; device: ticks {ticks_done}, crc {}, decode {}, overruns {}",
+            s.crc_errors - base.crc_errors,
+            s.decode_errors - base.decode_errors,
+            s.overruns - base.overruns
+        );
+        // Every sensor frame is accounted for.
+        assert_eq!(ledger.sent, ledger.delivered + ledger.corrupt + ledger.lost);
+        assert_eq!(ticks_done, ledger.delivered);
+        assert_eq!(errors, ledger.corrupt + ledger.garbage_frames);
+        // Every long burst is exactly one overrun; merged garbage may overrun too.
+        assert!(u64::from(s.overruns - base.overruns) >= ledger.long_bursts);
+        // Requests the device decoded: the sensor frames it answered and two GetStats (one
+        // during the silence, this one).
+        assert_eq!(
+            u64::from(s.frames_received - base.frames_received),
+            ledger.delivered + 2
+        );
+        // The plant's side saw only clean replies.
+        let plant = self.link.counters();
+        assert_eq!(plant.crc_errors + plant.decode_errors + plant.overruns, 0);
+        assert!(
+            flips > 100 && cuts > 100 && merged > 50 && dups > 50,
+            "{ledger:?}"
+        );
+        assert!(ledger.long_bursts > 20 && ledger.garbage_frames > 80);
+    }
+}
+
+#[test]
+fn a_grasp_over_a_hostile_line_stays_in_the_documented_safe_state_and_every_frame_is_counted() {
+    let mut line = Hostile::new();
+    let ticks = 4000u32;
+    let silence = 1500..1600u32; // 100 ms with no frame at all
+    let frozen = 2600..2660u32; // a frozen sensor: the last good frame, again and again
+    for i in 0..ticks {
+        let f = grasp(i);
+        if silence.contains(&i) {
+            line.silent(i == silence.start);
+        } else if i == silence.end {
+            line.after_silence(&f);
+        } else if frozen.contains(&i) {
+            line.frozen(&f);
+        } else if i == frozen.end {
+            line.after_frozen(&f);
+        } else {
+            line.ordinary(&f);
+        }
+    }
+    assert!(line.fault_seen);
+    line.check_ledger();
 }
 
 /// Garbage with no delimiter at all, longer than the buffer, then a clean frame: the device

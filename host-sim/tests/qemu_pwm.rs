@@ -153,27 +153,20 @@ fn stats(link: &mut SerialLink) -> Stats {
     }
 }
 
-#[test]
-#[cfg_attr(
-    no_qemu_board,
-    ignore = "needs QEMU and the board firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh board"
-)]
-fn the_board_build_writes_each_command_into_tim3s_compare_register() {
-    let Some((qemu, elf)) = common::qemu_and_firmware("board") else {
-        return;
-    };
-    let (_emulator, mut link, mut qmp) = boot(&qemu, &elf);
-
-    // Set up before any configuration: PWM mode 1 with preload on channel 1, output
-    // enabled, no prescaler, 800 counts a period, counting, and no force.
+/// Set up before any configuration: PWM mode 1 with preload on channel 1, output
+/// enabled, no prescaler, 800 counts a period, counting, and no force.
+fn check_reset_state(qmp: &mut Qmp) {
     assert_eq!(qmp.read_u32(CCMR1) & 0xFF, 0b110 << 4 | 1 << 3, "CCMR1");
     assert_eq!(qmp.read_u32(CCER) & 0b11, 1, "CCER: CC1E, active high");
     assert_eq!(qmp.read_u32(PSC), 0, "PSC");
     assert_eq!(qmp.read_u32(ARR), u32::from(PERIOD_COUNTS) - 1, "ARR");
     assert_eq!(qmp.read_u32(CR1) & 1, 1, "CR1.CEN");
     assert_eq!(qmp.read_u32(CCR1), 0, "no force before a configuration");
+}
 
-    let cfg = ControllerConfig::default();
+/// Configures the device with `cfg` (whose `N_max` is the full scale) and checks the duty
+/// of its first command; returns that command [N].
+fn configure(link: &mut SerialLink, qmp: &mut Qmp, cfg: ControllerConfig) -> f32 {
     assert_eq!(
         f64::from(FULL_SCALE_N),
         cfg.n_max_n,
@@ -183,28 +176,42 @@ fn the_board_build_writes_each_command_into_tim3s_compare_register() {
         link.exchange(&Request::Configure(cfg)).unwrap(),
         Reply::Configured(Ok(()))
     );
-    let configured = stats(&mut link).command_n;
+    let configured = stats(link).command_n;
     assert_eq!(qmp.read_u32(CCR1), duty(configured), "after Configure");
+    configured
+}
 
-    // A varying load for 120 ticks, then a light one for 800, so that the command falls
-    // (at 20 N/s, from as high as `N_max`) well below the fault force before the silence.
+/// The sensor frame of tick `i`: a varying load for 120 ticks, then a light one.
+fn load(i: u32) -> SensorFrame {
+    let p = i as f32 * 0.09;
+    let varying = i < 120;
+    SensorFrame {
+        seq: i,
+        timestamp_us: 1000 * u64::from(i) + 1,
+        tangential_force_n: if varying {
+            [6.0 * p.sin().abs(), 1.5 * p.cos()]
+        } else {
+            [0.2, 0.0]
+        },
+        torsional_moment_nm: if varying { 0.02 * (0.7 * p).sin() } else { 0.0 },
+        normal_force_n: if varying { 6.0 + 2.0 * p.cos() } else { 3.0 },
+        slip: Default::default(),
+    }
+}
+
+/// A varying load for 120 ticks, then a light one for 800, so that the command falls
+/// (at 20 N/s, from as high as `N_max`) well below the fault force before the silence;
+/// every tick's duty is its command's. Returns the distinct duties and the last command
+/// [N].
+fn tick_through_loads(
+    link: &mut SerialLink,
+    qmp: &mut Qmp,
+    configured: f32,
+) -> (std::collections::BTreeSet<u32>, f32) {
     let mut duties = std::collections::BTreeSet::new();
     let mut last = configured;
     for i in 0..920u32 {
-        let p = i as f32 * 0.09;
-        let varying = i < 120;
-        let f = SensorFrame {
-            seq: i,
-            timestamp_us: 1000 * u64::from(i) + 1,
-            tangential_force_n: if varying {
-                [6.0 * p.sin().abs(), 1.5 * p.cos()]
-            } else {
-                [0.2, 0.0]
-            },
-            torsional_moment_nm: if varying { 0.02 * (0.7 * p).sin() } else { 0.0 },
-            normal_force_n: if varying { 6.0 + 2.0 * p.cos() } else { 3.0 },
-            slip: Default::default(),
-        };
+        let f = load(i);
         let Reply::Command(cmd) = link.exchange(&Request::Sensor(f)).unwrap() else {
             panic!("no command at tick {i}")
         };
@@ -219,18 +226,13 @@ fn the_board_build_writes_each_command_into_tim3s_compare_register() {
         duties.insert(ccr);
         last = cmd.normal_force_n;
     }
-    assert!(
-        duties.len() >= 20,
-        "the loads should move the duty: {duties:?}"
-    );
+    (duties, last)
+}
 
-    assert!(
-        f64::from(last) < cfg.fault_force_n,
-        "the light load should leave the command below the fault force: {last} N"
-    );
-
-    // Silence: paced in real time with no sensor frame, the device ticks idle and, after
-    // the stale timeout, raises its command towards the fault force; the duty follows.
+/// Silence: paced in real time with no sensor frame, the device ticks idle and, after
+/// the stale timeout, raises its command towards the fault force. Returns once it is in
+/// its fault state a few idle ticks past the timeout, paced in lockstep again.
+fn fall_silent_until_the_fault(link: &mut SerialLink, cfg: &ControllerConfig) {
     assert_eq!(
         link.exchange(&Request::SetPacing(Pacing::RealTime))
             .unwrap(),
@@ -239,7 +241,7 @@ fn the_board_build_writes_each_command_into_tim3s_compare_register() {
     let stale_ticks = (cfg.stale_timeout_s / cfg.tick_period_s).round() as u32;
     let start = Instant::now();
     loop {
-        let s = stats(&mut link);
+        let s = stats(link);
         if s.fault_active && s.idle_ticks > stale_ticks + 5 {
             break;
         }
@@ -255,6 +257,35 @@ fn the_board_build_writes_each_command_into_tim3s_compare_register() {
             .unwrap(),
         Reply::Paced(Pacing::Lockstep)
     );
+}
+
+#[test]
+#[cfg_attr(
+    no_qemu_board,
+    ignore = "needs QEMU and the board firmware: bash scripts/firmware-setup.sh && bash scripts/firmware-build.sh board"
+)]
+fn the_board_build_writes_each_command_into_tim3s_compare_register() {
+    let Some((qemu, elf)) = common::qemu_and_firmware("board") else {
+        return;
+    };
+    let (_emulator, mut link, mut qmp) = boot(&qemu, &elf);
+    check_reset_state(&mut qmp);
+
+    let cfg = ControllerConfig::default();
+    let configured = configure(&mut link, &mut qmp, cfg);
+    let (duties, last) = tick_through_loads(&mut link, &mut qmp, configured);
+    assert!(
+        duties.len() >= 20,
+        "the loads should move the duty: {duties:?}"
+    );
+
+    assert!(
+        f64::from(last) < cfg.fault_force_n,
+        "the light load should leave the command below the fault force: {last} N"
+    );
+
+    // Silence: the command rises towards the fault force; the duty follows.
+    fall_silent_until_the_fault(&mut link, &cfg);
     let idle = stats(&mut link).command_n;
     assert!(
         duty(idle) > duty(last),

@@ -56,7 +56,7 @@ struct Cut {
     at_cut: f32,
     safe: f32,
     /// Idle ticks when the plant first saw the command at the safe value (it may look
-    /// late: the bound is checked at every observation in `cut_mid_hold`), and the bound
+    /// late: the bound is checked at every observation in `follow`), and the bound
     /// (`stale_ticks + ceil(travel / step) + 1`).
     reached_after: u32,
     bound: u32,
@@ -64,14 +64,20 @@ struct Cut {
     bound_s: f64,
 }
 
-/// Holds, cuts the link, and follows the device's command until it reaches the safe
-/// value. `fault_force_n` chooses whether the safe value is the fault force (above the
-/// requirement) or the last requirement itself.
-fn cut_mid_hold(link: &mut dyn Link, fault_force_n: f64, poll: Duration) -> Cut {
-    let cfg = ControllerConfig {
-        fault_force_n,
-        ..ControllerConfig::default()
-    };
+/// The hold before the cut.
+struct Hold {
+    /// The host's own controller on the same frames: it says what the device must reach.
+    host: Controller<f32, Libm>,
+    /// The device's last command and the last requirement [N].
+    at_cut: f32,
+    required: f32,
+    /// The device's counters just before the last frame.
+    before: Stats,
+}
+
+/// Configures the device with `cfg` and holds (`frame`), checking every command against
+/// the host's own controller.
+fn hold(link: &mut dyn Link, cfg: ControllerConfig) -> Hold {
     assert_eq!(
         link.exchange(&Request::Configure(cfg)).unwrap(),
         Reply::Configured(Ok(()))
@@ -102,25 +108,60 @@ fn cut_mid_hold(link: &mut dyn Link, fault_force_n: f64, poll: Duration) -> Cut 
         at_cut = c.normal_force_n;
         required = want.required_n;
     }
-    let cut = Instant::now();
-    let after = stats(link);
-    assert!(!after.fault_active);
-    assert_eq!(after.ticks, before.ticks + 1);
+    Hold {
+        host,
+        at_cut,
+        required,
+        before,
+    }
+}
+
+/// The way from the command at the cut to the safe value, and the bound on its idle ticks.
+struct Travel {
+    safe: f32,
+    stale_ticks: u32,
+    /// One rate-limited step [N] and the distance to go [N].
+    step: f64,
+    travel: f64,
+    /// `stale_ticks + ceil(travel / step) + 1`.
+    bound: u32,
+}
+
+impl Travel {
+    fn new(cfg: &ControllerConfig, at_cut: f32, safe: f32) -> Self {
+        let stale_ticks = (cfg.stale_timeout_s / cfg.tick_period_s).round() as u32;
+        let step = if safe > at_cut {
+            cfg.rise_rate_n_per_s
+        } else {
+            cfg.fall_rate_n_per_s
+        } * cfg.tick_period_s;
+        let travel = f64::from((safe - at_cut).abs());
+        // One tick of slack for the tick that arms the deadline.
+        let bound = stale_ticks + (travel / step).ceil() as u32 + 1;
+        Self {
+            safe,
+            stale_ticks,
+            step,
+            travel,
+            bound,
+        }
+    }
+}
+
+/// Polls the device every `poll` after the cut (at `cut`, its counters then `after`) until
+/// its command reaches the safe value, checking at every observation that it holds, then
+/// moves at the rate limit, never below the last requirement; returns the idle ticks and
+/// the wall time it took.
+fn follow(
+    link: &mut dyn Link,
+    held: &Hold,
+    after: &Stats,
+    way: &Travel,
+    poll: Duration,
+    cut: Instant,
+) -> (u32, Duration) {
+    let (before, at_cut, required, safe) = (&held.before, held.at_cut, held.required, way.safe);
     let slack = after.idle_ticks - before.idle_ticks;
-    let safe = host.fault_target_n();
-    assert!(safe >= required && required > 4.0 * cfg.n_min_n as f32);
-    assert!(at_cut > required, "the command is falling at the cut");
-    let stale_ticks = (cfg.stale_timeout_s / cfg.tick_period_s).round() as u32;
-    let step = if safe > at_cut {
-        cfg.rise_rate_n_per_s
-    } else {
-        cfg.fall_rate_n_per_s
-    } * cfg.tick_period_s;
-    let travel = f64::from((safe - at_cut).abs());
-    // One tick of slack for the tick that arms the deadline.
-    let bound = stale_ticks + (travel / step).ceil() as u32 + 1;
-    let bound_s = f64::from(bound) * cfg.tick_period_s;
-    let mut reached = None;
     let deadline = cut + Duration::from_secs(30);
     while Instant::now() < deadline {
         std::thread::sleep(poll);
@@ -132,14 +173,14 @@ fn cut_mid_hold(link: &mut dyn Link, fault_force_n: f64, poll: Duration) -> Cut 
             "after {idle} idle ticks the command {} N is below the last requirement {required} N",
             s.command_n
         );
-        if idle < stale_ticks {
+        if idle < way.stale_ticks {
             assert_eq!(s.command_n, at_cut, "held before the stale timeout");
         }
         // At least as far along as `idle - slack` idle ticks allow: held for the stale
         // timeout, then one rate-limited step per tick (this holds however late the
         // plant looks, so the bound is checked in device time, not observation time).
-        let moved = (idle.saturating_sub(slack) + 1).saturating_sub(stale_ticks);
-        let left = (travel - step * f64::from(moved)).max(0.0);
+        let moved = (idle.saturating_sub(slack) + 1).saturating_sub(way.stale_ticks);
+        let left = (way.travel - way.step * f64::from(moved)).max(0.0);
         assert!(
             f64::from((safe - s.command_n).abs()) <= left + 1e-3,
             "after {idle} idle ticks (slack {slack}) the command {} N is {} N from {safe} N, \
@@ -149,25 +190,43 @@ fn cut_mid_hold(link: &mut dyn Link, fault_force_n: f64, poll: Duration) -> Cut 
         );
         if s.command_n == safe {
             assert!(s.fault_active);
-            reached = Some((idle - slack.min(idle), cut.elapsed()));
-            break;
+            return (idle - slack.min(idle), cut.elapsed());
         }
     }
-    let Some((reached_after, wall)) = reached else {
-        let s = stats(link);
-        panic!(
-            "the command never reached {safe} N: {} N after {} idle ticks (held {at_cut} N)",
-            s.command_n,
-            s.idle_ticks - before.idle_ticks
-        );
+    let s = stats(link);
+    panic!(
+        "the command never reached {safe} N: {} N after {} idle ticks (held {at_cut} N)",
+        s.command_n,
+        s.idle_ticks - before.idle_ticks
+    );
+}
+
+/// Holds, cuts the link, and follows the device's command until it reaches the safe
+/// value. `fault_force_n` chooses whether the safe value is the fault force (above the
+/// requirement) or the last requirement itself.
+fn cut_mid_hold(link: &mut dyn Link, fault_force_n: f64, poll: Duration) -> Cut {
+    let cfg = ControllerConfig {
+        fault_force_n,
+        ..ControllerConfig::default()
     };
+    let held = hold(link, cfg);
+    let cut = Instant::now();
+    let after = stats(link);
+    assert!(!after.fault_active);
+    assert_eq!(after.ticks, held.before.ticks + 1);
+    let (at_cut, required) = (held.at_cut, held.required);
+    let safe = held.host.fault_target_n();
+    assert!(safe >= required && required > 4.0 * cfg.n_min_n as f32);
+    assert!(at_cut > required, "the command is falling at the cut");
+    let way = Travel::new(&cfg, at_cut, safe);
+    let (reached_after, wall) = follow(link, &held, &after, &way, poll, cut);
     Cut {
         at_cut,
         safe,
         reached_after,
-        bound,
+        bound: way.bound,
         wall,
-        bound_s,
+        bound_s: f64::from(way.bound) * cfg.tick_period_s,
     }
 }
 

@@ -104,10 +104,14 @@ fn base_configs() -> [ControllerConfig; 3] {
     ]
 }
 
-/// Whether every dimensional field of `cfg` is a normal f32 number well inside f32's range
-/// (magnitudes 1e-30 to 1e30). `ControllerConfig::validate` checks the fields in f64 only:
-/// a configuration outside this range can be accepted by `Controller::<f32>::new` and then
-/// tick with NaN in `required_n` and `n_slip_n` (see [`values_beyond_f32_are_accepted`]).
+/// Whether `cfg` lies well inside f32's range: every dimensional field, and each rate
+/// limit's step per tick, of magnitude 1e-30 to 1e30, and the skew's `alpha` and
+/// `locus_over_a` at most 1e30. `ControllerConfig::validate` checks the fields in f64 only,
+/// so [`exercise`] asks for finite `required_n`, `n_slip_n` and `required_force` only of a
+/// configuration that fits; beyond, it checks the command and the utilisation alone. (One
+/// such configuration, `n_min_n = 1e-300`, was once accepted and ticked with NaN in
+/// `required_n` and `n_slip_n`; `Controller::<f32>::new` now refuses it or ticks finite:
+/// [`values_beyond_f32_are_accepted`].)
 fn fits_f32(cfg: &ControllerConfig) -> bool {
     let fine = |x: f64| (1e-30..=1e30).contains(&x.abs());
     [

@@ -2,8 +2,9 @@
 //! then `Controller::new` in f32 (the device's precision and precomputation) and a few
 //! ticks on measurements from the remaining bytes. Checks: no panic; a refusal names a
 //! field; an accepted controller's command is finite and inside `[N_min, N_max]`, and its
-//! other outputs are finite when the configuration's values fit f32 (a known bug otherwise:
-//! see tests/no_panic.rs, `values_beyond_f32_are_accepted`).
+//! other outputs are finite when the configuration's values fit f32 (beyond, only the
+//! command and the utilisation are checked; a grid f32 cannot hold once ticked with NaN,
+//! now fixed: see tests/no_panic.rs, `values_beyond_f32_are_accepted`).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;

@@ -177,7 +177,17 @@ pub struct CommandFrame {
     pub tick_cost: u32,
     /// The friction coefficient the controller now believes (lowered by slip signals).
     pub mu_estimate: f32,
-    /// The margin multiplying the safety factor (raised by slip signals, ≥ 1).
+    /// The margin multiplying the safety factor, the controller's
+    /// [`TickOutput::margin`](crate::controller::TickOutput::margin): the slip response's
+    /// margin (1 until slip signals raise it, at most
+    /// [`MARGIN_MAX`](crate::controller::slip::MARGIN_MAX)) times the load's factor
+    /// ([`CYCLIC_SAFETY_FACTOR`](crate::controller::lead::CYCLIC_SAFETY_FACTOR) while the
+    /// load cycles; on a contact with no slip to remember, one that eases from 1 down to
+    /// [`STEADY_SAFETY_FACTOR`](crate::controller::lead::STEADY_SAFETY_FACTOR) along a
+    /// steady hold; 1 otherwise). So it lies in `[STEADY_SAFETY_FACTOR, MARGIN_MAX ×
+    /// CYCLIC_SAFETY_FACTOR]`, 0.85 to 4.35, and is below 1 only on a steady hold
+    /// (`tests/load_margin.rs::a_steady_hold_ramps_in_the_steady_factor_after_the_hold_time`
+    /// shows it at 0.85); the force asked is never below `N_slip` whatever the margin.
     pub margin: f32,
 }
 

@@ -27,9 +27,10 @@ pub trait TickMath<T: Real>: Copy + Default + core::fmt::Debug {
     /// A square root in the start-up's precision `P` for its limit-surface kernels, when
     /// the backend has one that is correctly rounded (so the grid comes out bit for bit as
     /// with `libm`'s) and cheaper, such as the firmware's `VSQRT` for `P = f32`
-    /// (`host-sim/tests/firmware_costs.rs` measures the start-ups). `None`, the default, keeps `libm`'s. An approximate square root (such as
-    /// [`Micromath`]'s) must not be offered here. `extern "C"`: it cannot unwind, which
-    /// keeps the start-up's no-panic proof.
+    /// (`host-sim/tests/firmware_costs.rs` measures the start-ups). `None`, the default,
+    /// keeps `libm`'s. An approximate square root (such as [`Micromath`]'s) must not be
+    /// offered here. `extern "C"`: it cannot unwind, which keeps the start-up's no-panic
+    /// proof.
     fn startup_sqrt<P: Real>() -> Option<extern "C" fn(P) -> P> {
         None
     }
@@ -69,9 +70,9 @@ impl TickMath<f32> for Micromath {
 
 /// `min(a, b)` for a bound `b` that is never NaN, as `f32::min` gives it (a NaN `a`
 /// yields `b`; the sign of a zero aside), by one comparison: the Cortex-M4F has no
-/// `VMINNM`, so `min` is an out-of-line `fminf` call, and the tick clamps seven times
-/// (the slip response three more, the utilisation one). Every caller's `b` is a validated
-/// bound, a constant or a value already clamped.
+/// `VMINNM`, so `min` is an out-of-line `fminf` call, and the tick, the slip response and
+/// the utilisation clamp on every tick. Every caller's `b` is a validated bound, a
+/// constant or a value already clamped.
 #[inline(always)]
 pub(crate) fn lesser<T: Real>(a: T, b: T) -> T {
     // A NaN `a` compares false and gives `b`.

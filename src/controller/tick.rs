@@ -92,13 +92,17 @@ pub const RESYNC_FRAMES: u8 = 3;
 /// [`ConfigError`] naming the bad field and precomputes the [`Capacity`] grid (this is
 /// where all `powf` and quadrature happen). After that [`Controller::tick`] cannot fail,
 /// does not allocate and runs in bounded time: two solves of at most
-/// `log2(force_nodes) + max_illinois_iterations` steps each, and one utilisation.
+/// `log2(force_nodes) + max_illinois_iterations` steps each, and one utilisation (two on
+/// a tick whose slip signal lowers `μ̂`).
 ///
 /// Each tick, for a good measurement (finite, within the sensor ranges, newer than the
 /// last good one):
-/// 1. `N_req(s)` and `N_slip = N_req(1)` from the load `(|f_t|, |m_n|)`;
-/// 2. the target `clamp(N_req(s), N_min, N_max)`, status `Saturated` when
-///    `N_req(s) > N_max`;
+/// 1. `N_slip = N_req(1)` and `N_req(s)` from the load `(|f_t|, |m_n|)` at the believed
+///    `μ̂`, `s` being the safety factor times the [`margin`](TickOutput::margin) (floored
+///    at 1), a round patch's moment times its torsion factor
+///    ([`Controller::tick_required_force`]);
+/// 2. the target: `N_req(s)` led ahead of the actuator ([`lead`](super::lead)), clamped
+///    into `[N_min, N_max]`; status `Saturated` when `N_req(s) > N_max`;
 /// 3. the command moves toward the target by at most `rise_rate·dt` up or
 ///    `fall_rate·dt` down (`dt` the tick period): it rises fast and relaxes slowly.
 ///

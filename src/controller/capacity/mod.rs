@@ -58,7 +58,7 @@ pub const MAX_ILLINOIS_ITERATIONS: u8 = 16;
 /// above the most its 8-ulp tolerance needs over the same loads (the test fails above 5,
 /// `tests/controller.rs::solves_stay_far_below_the_iteration_cap`). It bounds the worst
 /// tick, which docs/firmware-costs.md measures with every solve run to this cap (the
-/// `solve-to-cap` feature).
+/// `solve-to-cap` feature; docs/decisions/illinois-cap-and-tick-cost.md).
 ///
 /// A solve that reaches a cap returns the upper end of its bracket, where the load holds:
 /// more force than the tolerance would give, never less. On a grid far coarser than the
@@ -412,9 +412,9 @@ impl<T: Real> Capacity<T> {
 
     /// The Illinois run inside interval `j`. The interval is read once, before the run:
     /// its steps then interpolate from registers instead of reading and bounds-checking
-    /// the arrays again, which the M4F's capped ticks need
-    /// (`host-sim/tests/firmware_costs.rs`). Same values, same operations: the same
-    /// answer bit for bit.
+    /// the arrays again, which the M4F's capped ticks need (`host-sim/tests/firmware_costs.rs`;
+    /// docs/decisions/illinois-cap-and-tick-cost.md). Same values, same operations: the
+    /// same answer bit for bit.
     fn illinois_in<const TABLE: bool>(&self, f: T, m: T, j: usize) -> Solution<T> {
         let iv = self.interval(j);
         let ([a, b], [arm_a, arm_b], [pos_a, pos_b]) = (iv.force_n, iv.arm_m, iv.pos);

@@ -150,8 +150,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// default configuration set in place. The firmware's compiler still assembles the
     /// struct in this frame before copying it, but once, where building, configuring and
     /// then wrapping a blank in `Some` held it twice (the stack peak:
-    /// `host-sim/tests/firmware_costs.rs`). Out of line, so that the temporary stays in this short-lived frame and
-    /// is gone before the precomputation that follows.
+    /// `host-sim/tests/firmware_costs.rs`). Out of line, so that the temporary stays in
+    /// this short-lived frame and is gone before the precomputation that follows.
     #[inline(never)]
     pub(crate) fn blank_into(slot: &mut Option<Self>) {
         slot.insert(Self::unset())

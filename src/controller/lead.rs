@@ -85,7 +85,8 @@ pub const STEADY_HOLD_S: f64 = 0.3;
 pub const STEADY_RAMP_S: f64 = 0.5;
 
 /// The rise of tangential load that ends a steady hold \[N\] (`÷ μ` in `N_slip`): half of
-/// [`CYCLE_DEPTH_FLOOR_N`], above a steady hold's filtered noise (docs/decisions/steady-margin.md;
+/// [`CYCLE_DEPTH_FLOOR_N`], above a steady hold's filtered noise
+/// (docs/decisions/steady-margin.md;
 /// `tests/load_margin.rs::a_small_rise_ends_the_steady_factor_and_a_small_fall_does_not`).
 pub const STEADY_RISE_N: f64 = 0.05;
 
@@ -94,7 +95,8 @@ pub const STEADY_RISE_N: f64 = 0.05;
 pub const CYCLE_DEPTH: f64 = 0.1;
 
 /// The part of a swing's depth that does not scale with it, as tangential load \[N\]
-/// (`÷ μ` in `N_slip`): 2 × the bench's largest sensor noise (docs/decisions/cyclic-factor.md).
+/// (`÷ μ` in `N_slip`): 2 × the bench's largest sensor noise
+/// (docs/decisions/cyclic-factor.md).
 pub const CYCLE_DEPTH_FLOOR_N: f64 = 0.1;
 
 /// The lead's filters, the load factor's detectors and their constants.

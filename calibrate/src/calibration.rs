@@ -19,7 +19,8 @@
 
 use crate::contact_fit::{fit_contact, ContactFit};
 use crate::error::CalibError;
-use crate::friction_contact::FrictionContact;
+use crate::estimate::FrictionContact;
+pub use crate::estimate::{Estimate, Setup};
 use crate::friction_fit::{
     fit_joint, FitPlan, JointFit, GAMMA, KAPPA, LN_C, LN_MU, PARAMS, SKEW_SQ,
 };
@@ -43,57 +44,6 @@ pub const K_HELD: f64 = 2.0;
 pub const GAMMA_HELD: f64 = 0.0;
 /// Aspect nodes of the grid [`calibrate`] builds.
 pub const GRID_ASPECTS: usize = 16;
-
-/// What the finger is, beyond the data: its shape and half-length.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Setup {
-    /// Rectangle (hemicylinder) or disc (hemisphere).
-    pub shape: FingerShape,
-    /// Half-length `l` \[m\] of the rectangle (ignored for the disc).
-    pub half_length_m: f64,
-}
-
-/// One parameter's estimate.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Estimate {
-    /// The value (fitted, held, or moved by [`Calibration::conservative`]); `null` in
-    /// JSON for `k = ∞` (uniform pressure).
-    pub value: f64,
-    /// The 95 % interval; `None` when the parameter was not estimated at all, or was
-    /// refitted without one (the friction contact's `c`); an unbounded end is `∞`
-    /// (`null` in JSON).
-    pub ci95: Option<[f64; 2]>,
-    /// Whether the data identify it.
-    pub identified: bool,
-    /// Why not, when not identified.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
-}
-
-impl Estimate {
-    fn fitted(value: f64, ci: (f64, f64)) -> Self {
-        Self {
-            value,
-            ci95: Some([ci.0, ci.1]),
-            identified: true,
-            reason: None,
-        }
-    }
-
-    fn held(value: f64, ci95: Option<[f64; 2]>, reason: String) -> Self {
-        Self {
-            value,
-            ci95,
-            identified: false,
-            reason: Some(reason),
-        }
-    }
-
-    /// The interval's lower end (the value when there is none).
-    pub fn lower(&self) -> f64 {
-        self.ci95.map_or(self.value, |c| c[0])
-    }
-}
 
 /// The skew's three settings, as `[effect.skewed_pressure]` names them.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -5,8 +5,8 @@
 //! and `host-sim experiment --finger` read the file as it is. Each value's 95 % interval,
 //! or why it was held, is a comment on its line.
 
-use crate::calibration::{Calibration, Estimate};
-use crate::friction_contact::Refit;
+use crate::calibration::Calibration;
+use crate::estimate::{Estimate, Refit};
 use std::fmt::Write;
 
 /// A number as TOML writes it: shortest round-trip, `inf` for infinity.

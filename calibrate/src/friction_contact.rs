@@ -24,12 +24,13 @@
 //! Cost: a surface grid over the refit's reach ([`grid_for_refit`]) and 120 bisections
 //! of a mean over the torsion onsets: about 0.2 s (docs/calibration.md).
 
-use crate::calibration::{Calibration, Estimate, Setup};
+use crate::calibration::Calibration;
 use crate::error::CalibError;
+use crate::estimate::{Estimate, Setup};
+pub use crate::estimate::{FrictionContact, Refit};
 use crate::interval::{t975, wald};
 use crate::lab_csv::{OnsetKind, SlipOnset};
 use crate::surface::SurfaceGrid;
-use serde::Serialize;
 use softgrip::controller::FingerShape;
 
 /// How far the scale `c` may move from the indentation's, in `ln c`.
@@ -40,39 +41,6 @@ pub const LENGTH_REACH_LN: f64 = 1.0;
 pub const MIN_FORCE_ONSETS: usize = 2;
 /// Aspect nodes per decade of [`grid_for_refit`]'s grid.
 pub const NODES_PER_DECADE: f64 = 16.0;
-
-/// What the torsion onsets moved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Refit {
-    /// The scale `c` of `a = c·N^γ`.
-    Scale,
-    /// The half-length (a rectangle whose torsion no `c` fits).
-    HalfLength,
-    /// Neither: no torsion onset, or no root within reach (the joint fit's `c` and the
-    /// geometric half-length stay).
-    Neither,
-}
-
-/// How a calibration's friction contact was found, beside the values it moved.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FrictionContact {
-    /// What the torsion onsets moved.
-    pub refit: Refit,
-    /// The joint fit's `μ` (its value alone in JSON).
-    #[serde(serialize_with = "value_only")]
-    pub joint_mu: Estimate,
-    /// The joint fit's `c` [m/N^γ], the indentation's contact law (its value alone in
-    /// JSON).
-    #[serde(serialize_with = "value_only")]
-    pub joint_c: Estimate,
-    /// The finger's geometric half-length \[m\].
-    pub geometric_half_length_m: f64,
-}
-
-fn value_only<S: serde::Serializer>(e: &Estimate, s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_f64(e.value)
-}
 
 /// `μ` from the pure-force onsets: the geometric mean of their `f_t/N`; `None` without
 /// one. (The bench's cone baseline takes the same value.)
@@ -278,32 +246,5 @@ impl Calibration {
             geometric_half_length_m: self.half_length_m,
         });
         Ok(out)
-    }
-}
-
-impl FrictionContact {
-    /// One line for people: what moved, to what (`half_length_m`, the calibration's), and
-    /// from what (`sig` formats a number).
-    pub fn describe(&self, half_length_m: f64, sig: impl Fn(f64) -> String) -> String {
-        let moved = match self.refit {
-            Refit::Scale => format!(
-                "c refitted to the torsion onsets (joint fit: {})",
-                sig(self.joint_c.value)
-            ),
-            Refit::HalfLength => format!(
-                "no c fits the torsion onsets; half-length refitted to them: {} m (geometric: {} m)",
-                sig(half_length_m),
-                sig(self.geometric_half_length_m)
-            ),
-            Refit::Neither => {
-                "neither c nor the half-length fits the torsion onsets within reach: the \
-                 joint fit's c and the geometric half-length kept"
-                    .to_string()
-            }
-        };
-        format!(
-            "friction contact: mu from the pure-force onsets (joint fit: {}); {moved}",
-            sig(self.joint_mu.value)
-        )
     }
 }

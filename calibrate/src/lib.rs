@@ -10,6 +10,7 @@
 //! - [`calibration`]: identifiability, 95 % intervals, conservative values: [`calibrate`];
 //! - [`friction_contact`]: optionally after it, `μ` from the slip test and the contact
 //!   scale (or a long hemicylinder's half-length) refitted to the torsion onsets;
+//! - [`estimate`]: the plain data both make ([`Setup`], [`Estimate`], the refit's record);
 //! - [`interval`] and [`lsq`]: t quantiles, Wald intervals, the least-squares solver;
 //! - [`finger_toml`]: the finger TOML and the text report;
 //! - [`error`]: the errors, [`CalibError`].
@@ -26,6 +27,7 @@
 pub mod calibration;
 pub mod contact_fit;
 pub mod error;
+pub mod estimate;
 pub mod finger_toml;
 pub mod friction_contact;
 pub mod friction_fit;
@@ -34,5 +36,6 @@ pub mod lab_csv;
 pub mod lsq;
 pub mod surface;
 
-pub use calibration::{calibrate, calibrate_on, grid_for, Calibration, Estimate, Setup};
+pub use calibration::{calibrate, calibrate_on, grid_for, Calibration};
 pub use error::CalibError;
+pub use estimate::{Estimate, Setup};

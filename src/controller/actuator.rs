@@ -47,7 +47,7 @@ pub const RATE_MIN_N_PER_S: f64 = 30.0;
 /// (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const SLEW_GAP_N: f64 = 0.3;
 /// Ticks in a row that must look slew-limited before they are slew samples: a command that
-/// jumps looks slew-limited for a tick or two.
+/// jumps looks slew-limited for a tick or two (`tests/actuator_id.rs`).
 pub const SLEW_RUN_TICKS: u8 = 5;
 /// A tick is slew-limited when its rate is under this share of the lag's `|e|/τ̂` \[-\]
 /// (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
@@ -56,13 +56,15 @@ pub const SLEW_RATE_SHARE: f64 = 0.6;
 /// it (`tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const SLEW_GAIN: f64 = 0.2;
 /// How many samples the lag's sums remember: each new one weighs the old ones down by
-/// `1 − 1/MEMORY_SAMPLES`.
+/// `1 − 1/MEMORY_SAMPLES` (`tests/actuator_id.rs::the_lag_is_found_from_a_wrong_prior`).
 pub const MEMORY_SAMPLES: f64 = 400.0;
-/// A told lag's weight as a prior, in samples.
+/// A told lag's weight as a prior, in samples
+/// (`tests/actuator_id.rs::the_lag_is_found_from_a_wrong_prior`).
 pub const PRIOR_SAMPLES: f64 = 20.0;
-/// The rate at which the prior's samples count \[N/s\].
+/// The rate at which the prior's samples count \[N/s\] (`tests/actuator_id.rs`).
 pub const PRIOR_RATE_N_PER_S: f64 = 50.0;
-/// Lag samples needed before a tick can be judged slew-limited (the judgement uses `τ̂`).
+/// Lag samples needed before a tick can be judged slew-limited (the judgement uses `τ̂`;
+/// `tests/actuator_id.rs::a_slew_that_binds_is_found`).
 pub const LAG_SAMPLES_FOR_SLEW: u16 = 50;
 /// Identified lags below this many tick periods are an ideal actuator: no lead
 /// (`tests/actuator_id.rs::an_ideal_actuator_changes_no_command`).

@@ -64,7 +64,8 @@ impl SlipSignal {
 pub const MARGIN_STEP_INCIPIENT: f64 = 0.05;
 /// Margin added on a gross slip \[-\] (docs/decisions/slip-response-steps.md).
 pub const MARGIN_STEP_GROSS: f64 = 0.3;
-/// The largest margin \[-\]; the command is capped by `N_max` in any case.
+/// The largest margin \[-\]; the command is capped by `N_max` in any case
+/// (docs/decisions/slip-response-steps.md).
 pub const MARGIN_MAX: f64 = 3.0;
 /// The lowest `μ̂`, as a fraction of the configured `μ` \[-\]
 /// (docs/decisions/slip-response-steps.md).

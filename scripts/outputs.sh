@@ -2,7 +2,8 @@
 # scripts/outputs.sh BIN OUTDIR: what host-sim writes, for checking that a refactor leaves
 # it bit-identical: simulate --all against every controller (direct link), two bench runs,
 # the tables in every format, required-force and fls. Timing fields (wall-clock costs,
-# real-time factors, cost shares) are stripped, since they differ run to run.
+# real-time factors, cost shares) and a run's provenance (its commit, and whether the
+# sources were committed) are stripped, since they differ run to run.
 #
 #   git worktree add /tmp/base REV && (cd /tmp/base && cargo build --release -p host-sim)
 #   scripts/outputs.sh /tmp/base/target/release/host-sim /tmp/out-base
@@ -25,7 +26,7 @@ find "$OUT" -name '*.json' | while read f; do python3 - "$f" <<'PY'
 import json,sys,re
 p=sys.argv[1]
 def strip(o):
-    if isinstance(o,dict): return {k:strip(v) for k,v in o.items() if not re.search(r'(wall|elapsed|_s_per|per_tick_s|seconds|real_time|rtf|speed|_ns$|_step_s$|_link_s$|cost|share)',k)}
+    if isinstance(o,dict): return {k:strip(v) for k,v in o.items() if not re.search(r'(^provenance$|wall|elapsed|_s_per|per_tick_s|seconds|real_time|rtf|speed|_ns$|_step_s$|_link_s$|cost|share)',k)}
     if isinstance(o,list): return [strip(v) for v in o]
     return o
 try:

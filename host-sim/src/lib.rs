@@ -41,6 +41,7 @@ pub mod input;
 pub mod link;
 pub mod plot;
 pub mod progress;
+pub mod provenance;
 pub mod sim;
 
 /// A command-line failure with its exit code.

@@ -69,8 +69,9 @@ struct Bench {
     /// Per seed: (family, controller, knob value, force over oracle) of the defaults.
     per_seed: Vec<(u64, String, String, f64, f64)>,
     dominance: Vec<Dominance>,
-    /// `trials-mu-mismatch.csv`: (controller, knob value, slip sensor, dropped).
-    mu_runs: Vec<(String, f64, bool, bool)>,
+    /// `mu-mismatch`'s trials per setting and slip sensor: (controller, knob value, slip
+    /// sensor, drops, trials).
+    mu_runs: Vec<(String, f64, bool, u64, u64)>,
     /// Per family, the clairvoyant constant grip's mean force over the oracle.
     clairvoyant: Vec<(String, f64)>,
 }
@@ -127,26 +128,48 @@ fn parse_dominance(d: &Value) -> Dominance {
     }
 }
 
-fn load() -> Bench {
-    let dir = root().join("docs/bench");
-    let text = std::fs::read_to_string(dir.join("bench.json")).expect("docs/bench/bench.json");
-    let v: Value = serde_json::from_str(&text).expect("bench.json parses");
-    let key = &v["key"];
-    let rows: Vec<Row> = v["rows"]
-        .as_array()
-        .unwrap()
+/// The rows of `v[key]`.
+fn rows_of(v: &Value, key: &str) -> Vec<Row> {
+    let rows = v[key].as_array();
+    rows.unwrap_or_else(|| panic!("summary.json: {key}"))
         .iter()
         .map(parse_row)
-        .collect();
-    let per_seed = v["per_seed"]
-        .as_array()
-        .unwrap()
+        .collect()
+}
+
+/// `mu-mismatch`'s trials per setting and slip sensor: (controller, knob value, slip
+/// sensor, drops, trials).
+fn sensor_split(v: &Value) -> Vec<(String, f64, bool, u64, u64)> {
+    let split = v["mu_mismatch_by_sensor"].as_array();
+    split
+        .expect("summary.json: mu_mismatch_by_sensor")
         .iter()
-        .filter(|r| r["default"].as_bool() == Some(true))
+        .map(|s| {
+            (
+                s["controller"].as_str().unwrap().to_string(),
+                s["knob_value"].as_f64().unwrap(),
+                s["slip_sensor"].as_bool().unwrap(),
+                s["drops"].as_u64().unwrap(),
+                s["trials"].as_u64().unwrap(),
+            )
+        })
+        .collect()
+}
+
+fn load() -> Bench {
+    let path = root().join("docs/bench/summary.json");
+    let text = std::fs::read_to_string(&path).expect("docs/bench/summary.json");
+    let v: Value = serde_json::from_str(&text).expect("summary.json parses");
+    let key = &v["key"];
+    let per_seed = v["per_seed_defaults"]
+        .as_array()
+        .expect("summary.json: per_seed_defaults")
+        .iter()
         .map(|r| {
             let row = parse_row(r);
+            let seed = r["seed"].as_u64().unwrap();
             (
-                r["seed"].as_u64().unwrap(),
+                seed,
                 row.family,
                 row.controller,
                 row.knob_value,
@@ -154,58 +177,26 @@ fn load() -> Bench {
             )
         })
         .collect();
-    let csv = std::fs::read_to_string(dir.join("trials-mu-mismatch.csv"))
-        .expect("docs/bench/trials-mu-mismatch.csv");
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
-    let (c, k, s, d) = (
-        col("controller"),
-        col("knob_value"),
-        col("slip_sensor"),
-        col("dropped"),
-    );
-    let mu_runs = lines
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (
-                f[c].to_string(),
-                f[k].parse().unwrap(),
-                f[s] == "true",
-                f[d] == "true",
-            )
-        })
-        .collect();
     let clairvoyant = v["clairvoyant_constant"]
         .as_array()
-        .expect("bench.json: clairvoyant_constant")
+        .expect("summary.json: clairvoyant_constant")
         .iter()
         .map(|c| {
-            (
-                c["family"].as_str().unwrap().to_string(),
-                c["mean_force_over_oracle"].as_f64().unwrap(),
-            )
+            let f = c["family"].as_str().unwrap().to_string();
+            (f, c["mean_force_over_oracle"].as_f64().unwrap())
         })
         .collect();
+    let seeds = key["seeds"].as_array().unwrap();
+    let dominance = v["dominance"].as_array().unwrap();
     Bench {
         clairvoyant,
-        seeds: key["seeds"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|s| s.as_u64().unwrap())
-            .collect(),
+        seeds: seeds.iter().map(|s| s.as_u64().unwrap()).collect(),
         trials: key["trials"].as_u64().unwrap(),
         plant: key["plant"].as_str().unwrap().to_string(),
-        rows,
+        rows: rows_of(&v, "rows"),
         per_seed,
-        dominance: v["dominance"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(parse_dominance)
-            .collect(),
-        mu_runs,
+        dominance: dominance.iter().map(parse_dominance).collect(),
+        mu_runs: sensor_split(&v),
     }
 }
 
@@ -248,12 +239,9 @@ impl Bench {
     fn mu_split(&self, name: &str, sensor: bool) -> (usize, usize) {
         let (controller, value) = name.split_once('@').unwrap();
         let value: f64 = value.parse().unwrap();
-        let runs: Vec<_> = self
-            .mu_runs
-            .iter()
-            .filter(|r| r.0 == controller && r.1 == value && r.2 == sensor)
-            .collect();
-        (runs.iter().filter(|r| r.3).count(), runs.len())
+        let runs = self.mu_runs.iter();
+        let mine = runs.filter(|r| r.0 == controller && r.1 == value && r.2 == sensor);
+        mine.fold((0, 0), |(d, n), r| (d + r.3 as usize, n + r.4 as usize))
     }
 }
 
@@ -284,8 +272,9 @@ fn wrap(text: &str, width: usize) -> String {
     out
 }
 
-/// The README's paragraph.
-fn render_claims(b: &Bench) -> String {
+/// The claim's first sentences: softgrip's default's drops and force, family by family,
+/// and which of its drops are at the hand's limit.
+fn claims_drops(b: &Bench) -> String {
     let ours = b.ours();
     let seeds: Vec<String> = b.seeds.iter().map(u64::to_string).collect();
     let n = b.trials * b.seeds.len() as u64;
@@ -331,6 +320,13 @@ fn render_claims(b: &Bench) -> String {
             at_limit.join(", ")
         );
     }
+    s
+}
+
+/// The claim's dominance sentences: where softgrip's settings beat every baseline
+/// setting, and where not, by how much.
+fn claims_dominance(b: &Bench) -> String {
+    let mut s = String::new();
     let wins = b.dominated_families();
     let mut losses = Vec::new();
     for f in FAMILIES.into_iter().filter(|f| !wins.contains(f)) {
@@ -383,6 +379,13 @@ fn render_claims(b: &Bench) -> String {
     if !losses.is_empty() {
         let _ = write!(s, " softgrip loses {}.", losses.join("; "));
     }
+    s
+}
+
+/// The claim's last sentences: the baselines' defaults, common practice and the
+/// clairvoyant reference.
+fn claims_defaults(b: &Bench) -> String {
+    let mut s = String::new();
     let beaten: Vec<String> = FAMILIES
         .iter()
         .filter_map(|f| {
@@ -444,8 +447,14 @@ fn render_claims(b: &Bench) -> String {
              controller can choose, docs/bench.md)."
         );
     }
+    s
+}
+
+/// The README's paragraph.
+fn render_claims(b: &Bench) -> String {
+    let s = claims_drops(b) + &claims_dominance(b) + &claims_defaults(b);
     format!(
-        "{} (generated from docs/bench/bench.json by host-sim/tests/bench_claims.rs; \
+        "{} (generated from docs/bench/summary.json by host-sim/tests/bench_claims.rs; \
          SOFTGRIP_WRITE_DOCS=1 rewrites it) -->\n{}\n{}",
         CLAIMS.0,
         wrap(&s, 90),
@@ -519,7 +528,7 @@ fn render_aims(b: &Bench) -> String {
 fn render_results(b: &Bench) -> String {
     let ours = b.ours();
     let mut s = format!(
-        "{} (generated from docs/bench/bench.json and trials-mu-mismatch.csv by \
+        "{} (generated from docs/bench/summary.json by \
          host-sim/tests/bench_claims.rs; SOFTGRIP_WRITE_DOCS=1 rewrites it) -->\n",
         RESULTS.0
     );
@@ -533,6 +542,23 @@ fn render_results(b: &Bench) -> String {
         setting(&ours)
     );
     s += &render_aims(b);
+    s += &results_table(b);
+    let (d1, n1) = b.mu_split(&ours, true);
+    let (d0, n0) = b.mu_split(&ours, false);
+    let _ = writeln!(
+        s,
+        "\nIn `mu-mismatch`, softgrip's default drops {d1}/{n1} of the trials with a slip \
+         sensor and {d0}/{n0} of those without.\n"
+    );
+    s += &results_open(b);
+    s += &results_references(b);
+    s + RESULTS.1
+}
+
+/// The results' table: softgrip's default in each family against the baselines.
+fn results_table(b: &Bench) -> String {
+    let ours = b.ours();
+    let mut s = String::new();
     let _ = writeln!(
         s,
         "| family | softgrip default: holdable drops, force/oracle | per seed, force/oracle | \
@@ -574,13 +600,12 @@ fn render_results(b: &Bench) -> String {
             d.contests.len()
         );
     }
-    let (d1, n1) = b.mu_split(&ours, true);
-    let (d0, n0) = b.mu_split(&ours, false);
-    let _ = writeln!(
-        s,
-        "\nIn `mu-mismatch`, softgrip's default drops {d1}/{n1} of the trials with a slip \
-         sensor and {d0}/{n0} of those without.\n"
-    );
+    s
+}
+
+/// The results' list of the baseline settings no softgrip setting beats.
+fn results_open(b: &Bench) -> String {
+    let mut s = String::new();
     for f in FAMILIES {
         let d = b.dominance(f);
         let open: Vec<&Contest> = d
@@ -604,6 +629,12 @@ fn render_results(b: &Bench) -> String {
         }
         s.push('\n');
     }
+    s
+}
+
+/// The results' references: the clairvoyant constant grip and `constant`'s twist drops.
+fn results_references(b: &Bench) -> String {
+    let mut s = String::new();
     let pct_drop =
         |f: &str, name: &str| pct(b.row(f, name).drops as f64 / b.row(f, name).trials as f64);
     let constant_default = b
@@ -632,7 +663,7 @@ fn render_results(b: &Bench) -> String {
         constant_default.trim_start_matches("constant@"),
         pct_drop("twist", &constant_default)
     );
-    s + RESULTS.1
+    s
 }
 
 #[test]
@@ -775,7 +806,11 @@ fn the_aims_follow_the_run() {
             r.drops_holdable = 0;
         }
     }
-    b.mu_runs.retain(|r| !(r.0 == c && r.1 == v && r.2 && r.3));
+    for r in b.mu_runs.iter_mut() {
+        if r.0 == c && r.1 == v && r.2 {
+            r.3 = 0;
+        }
+    }
     assert!(aim(&b, 1), "no drops anywhere meets aim 1");
     for r in b.rows.iter_mut() {
         if r.family == "lift-hold" && r.controller == c && r.knob_value == v {

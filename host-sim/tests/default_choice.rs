@@ -33,8 +33,8 @@ fn seeds(v: &Value) -> Vec<u64> {
 
 #[test]
 fn the_default_is_the_held_out_runs_choice() {
-    let held = json("docs/bench/heldout/bench.json");
-    let published = json("docs/bench/bench.json");
+    let held = json("docs/bench/heldout/summary.json");
+    let published = json("docs/bench/summary.json");
     let (h, p) = (seeds(&held), seeds(&published));
     assert!(
         h.iter().all(|s| !p.contains(s)),
@@ -57,7 +57,7 @@ fn the_default_is_the_held_out_runs_choice() {
 
 #[test]
 fn every_baselines_default_is_the_held_out_runs_choice() {
-    let held = json("docs/bench/heldout/bench.json");
+    let held = json("docs/bench/heldout/summary.json");
     let choices = held["baseline_default_choices"].as_array().unwrap();
     let baselines: Vec<&Sweep> = SWEEPS
         .iter()
@@ -98,7 +98,7 @@ fn render(held: &Value) -> String {
             .fold(f64::INFINITY, f64::min)
     };
     let mut out = format!(
-        "{} (generated from docs/bench/heldout/bench.json by \
+        "{} (generated from docs/bench/heldout/summary.json by \
          host-sim/tests/default_choice.rs; SOFTGRIP_WRITE_DOCS=1 rewrites it) -->\n",
         BLOCK.0
     );
@@ -216,7 +216,7 @@ fn without_limit<'a>(
 
 #[test]
 fn the_bench_page_states_the_held_out_choice() {
-    let held = json("docs/bench/heldout/bench.json");
+    let held = json("docs/bench/heldout/summary.json");
     common::check_block(
         "docs/bench-results.md",
         BLOCK,
@@ -488,9 +488,9 @@ fn a_sensorless_mu_mismatch_drop_counts() {
 
 #[test]
 fn the_committed_runs_are_judged_by_this_rule() {
-    // Each committed bench.json's choices are the ones this build's rule makes from its
+    // Each committed summary.json's choices are the ones this build's rule makes from its
     // pooled rows (`host-sim bench rejudge` rewrites them after a change of the rule).
-    for rel in ["docs/bench/heldout/bench.json", "docs/bench/bench.json"] {
+    for rel in ["docs/bench/heldout/summary.json", "docs/bench/summary.json"] {
         let v = json(rel);
         let rows: Vec<Row> = serde_json::from_value(v["rows"].clone()).unwrap();
         let again = serde_json::to_value(choose_on_rows(&rows)).unwrap();

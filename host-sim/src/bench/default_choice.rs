@@ -301,7 +301,7 @@ pub fn baseline_line(c: &Choice) -> String {
     )
 }
 
-/// Judges a written `bench.json` again by this build's rule: rewrites its
+/// Judges a written `bench.json` (or `summary.json`) again by this build's rule: rewrites its
 /// `default_choice` and `baseline_default_choices` from its pooled `rows`, leaving every
 /// other byte as it was, and returns the rule's lines. Cost: one read and one write of
 /// the file.
@@ -314,8 +314,12 @@ pub fn rejudge(path: &std::path::Path) -> Result<String, String> {
     let baselines = baseline_choices_on_rows(&rows);
     v["default_choice"] = serde_json::to_value(&choice).map_err(|e| at(&e))?;
     v["baseline_default_choices"] = serde_json::to_value(&baselines).map_err(|e| at(&e))?;
-    let out = serde_json::to_string_pretty(&v).map_err(|e| at(&e))?;
-    std::fs::write(path, out + "\n").map_err(|e| at(&e))?;
+    if v.get("per_seed_defaults").is_some() {
+        super::summary::write(path, &v)?;
+    } else {
+        let out = serde_json::to_string_pretty(&v).map_err(|e| at(&e))?;
+        std::fs::write(path, out + "\n").map_err(|e| at(&e))?;
+    }
     let mut lines: Vec<String> = choice.iter().map(self::lines).collect();
     lines.extend(baselines.iter().map(baseline_line));
     Ok(lines.join("\n"))

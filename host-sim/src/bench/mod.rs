@@ -28,6 +28,7 @@ pub mod plot;
 pub mod report;
 pub mod shard;
 pub mod stats;
+pub mod summary;
 pub mod sweep;
 pub mod trial_finger;
 
@@ -279,7 +280,8 @@ pub fn group(
 
 /// Writes a bench's files from its results: per family the pooled table and the
 /// dominance lines (shown), `trials-FAMILY.csv` and the Pareto plots; then `bench.json`
-/// with the pooled and the per-seed rows.
+/// with the pooled and the per-seed rows, and its `summary.json`
+/// ([`summary`]).
 pub fn write_outputs(
     opts: &BenchOptions,
     groups: &[FamilyResults],
@@ -330,7 +332,9 @@ pub fn write_outputs(
         show(&format!("{}\n", default_choice::baseline_line(c)));
     }
     let json = opts.out.join("bench.json");
+    let here = std::env::current_dir().unwrap_or_else(|_| opts.out.clone());
     let parts = report::JsonParts {
+        provenance: &crate::provenance::of_this_build(&here, summary::configuration()),
         key: &shard::Key::of(opts),
         rows: &pooled,
         per_seed: &per_seed,
@@ -340,7 +344,10 @@ pub fn write_outputs(
         clairvoyant_constant: &clairvoyant,
     };
     report::write_json(&json, &parts)
-        .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))
+        .map_err(|e| BenchError::Write(format!("{}: {e}", json.display())))?;
+    let summary = summary::summarize(&opts.out, None)
+        .and_then(|v| summary::write(&summary::path_in(&opts.out), &v));
+    summary.map_err(BenchError::Write)
 }
 
 /// Runs trial `i` of `family` under `seed` with softgrip (both modes, default knob) over

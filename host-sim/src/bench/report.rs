@@ -100,6 +100,8 @@ pub fn turn_line(family: &str, rows: &[Row]) -> String {
 
 /// What `bench.json` holds.
 pub struct JsonParts<'a> {
+    /// The build that made the run.
+    pub provenance: &'a crate::provenance::Provenance,
     /// The run's options.
     pub key: &'a Key,
     /// The rows pooled over the seeds.
@@ -117,12 +119,14 @@ pub struct JsonParts<'a> {
     pub clairvoyant_constant: &'a [super::stats::Clairvoyant],
 }
 
-/// Writes `bench.json`: the run's options (`key`: plant, seeds, trials, families,
+/// Writes `bench.json`: the build that made it (`provenance`: commit, configuration,
+/// constants and their digest), the run's options (`key`: plant, seeds, trials, families,
 /// sweeps, link...), the `rows` pooled over the seeds, the `per_seed` rows, the
 /// `dominance` checks, the `default_choice`, the `baseline_default_choices` and each
 /// family's `clairvoyant_constant` reference.
 pub fn write_json(path: &Path, parts: &JsonParts) -> std::io::Result<()> {
     let v = serde_json::json!({
+        "provenance": parts.provenance,
         "key": parts.key,
         "rows": parts.rows,
         "per_seed": parts.per_seed,

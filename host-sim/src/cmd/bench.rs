@@ -94,6 +94,26 @@ pub enum ShardCommand {
     /// default_choice and baseline_default_choices from its pooled rows, leaving every
     /// other byte as it was (a run judged before the rule changed).
     Rejudge(RejudgeArgs),
+    /// Writes a run's summary (what it is published by: summary.json beside its
+    /// bench.json, which every run also writes) from its bench.json and
+    /// trials-mu-mismatch.csv. A run written before runs recorded their build needs
+    /// --made-at.
+    Summary(SummaryArgs),
+}
+
+/// Arguments of `host-sim bench summary`.
+#[derive(Debug, Args)]
+pub struct SummaryArgs {
+    /// The run's output directory (its bench.json).
+    pub dir: PathBuf,
+    /// Where to write the summary (default: DIR/summary.json).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// The commit an older run (one whose bench.json records no provenance) was made at,
+    /// in the checkout of the current directory: refused unless that commit's constants
+    /// are this build's.
+    #[arg(long)]
+    pub made_at: Option<String>,
 }
 
 /// Arguments of `host-sim bench rejudge`.
@@ -269,6 +289,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         Some(ShardCommand::Merge(m)) => return merge(m),
         Some(ShardCommand::Select(a)) => return select(a),
         Some(ShardCommand::Rejudge(a)) => return rejudge(a),
+        Some(ShardCommand::Summary(a)) => return summary(a),
         None => {}
     }
     let opts = options(args)?;
@@ -308,6 +329,25 @@ fn rejudge(a: &RejudgeArgs) -> Result<(), CliError> {
         let lines = bench::default_choice::rejudge(f).map_err(CliError::Failed)?;
         println!("{lines}\nwrote {}", f.display());
     }
+    Ok(())
+}
+
+/// `host-sim bench summary`.
+fn summary(a: &SummaryArgs) -> Result<(), CliError> {
+    let made_at = match &a.made_at {
+        Some(commit) => {
+            let here = std::env::current_dir().map_err(|e| CliError::Failed(e.to_string()))?;
+            Some(bench::summary::made_at(&here, commit).map_err(CliError::Failed)?)
+        }
+        None => None,
+    };
+    let value = bench::summary::summarize(&a.dir, made_at).map_err(CliError::Failed)?;
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| bench::summary::path_in(&a.dir));
+    bench::summary::write(&out, &value).map_err(CliError::Failed)?;
+    println!("wrote {}", out.display());
     Ok(())
 }
 

@@ -1,5 +1,5 @@
-//! The README and docs/ hold together: every relative link of README.md and docs/*.md
-//! names a file that exists (links in docs/ are relative to docs/), the README's index
+//! The README and docs/ hold together: every relative link of README.md, docs/*.md and
+//! docs/decisions/*.md names a file that exists (relative to its page), the README's index
 //! lists every docs page, and the README stays a front door of at most 250 lines.
 
 use std::path::{Path, PathBuf};
@@ -11,6 +11,18 @@ fn root() -> PathBuf {
 fn pages() -> Vec<PathBuf> {
     let mut pages: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
         .expect("docs/")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    pages.sort();
+    pages
+}
+
+/// docs/decisions/'s pages, its index among them.
+fn decision_pages() -> Vec<PathBuf> {
+    let dir = root().join("docs/decisions");
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("docs/decisions/")
         .map(|e| e.expect("entry").path())
         .filter(|p| p.extension().is_some_and(|e| e == "md"))
         .collect();
@@ -65,7 +77,7 @@ fn resolve(page: &Path, target: &str) -> Option<PathBuf> {
 #[test]
 fn every_relative_link_names_a_file_that_exists() {
     let mut files = vec![PathBuf::from("README.md")];
-    files.extend(pages().iter().map(|p| {
+    files.extend(pages().iter().chain(&decision_pages()).map(|p| {
         p.strip_prefix(root())
             .expect("under the root")
             .to_path_buf()

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 
 /// Files of `src/controller/` (relative to it) not yet held to the rule; each one must
 /// still break it.
-const NOT_YET_CHECKED: [&str; 2] = ["capacity/build.rs", "config.rs"];
+const NOT_YET_CHECKED: [&str; 0] = [];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -117,19 +117,10 @@ impl FingerShape {
     }
 }
 
-/// The factor on the safety factor that the moment alone carries in the tick's requirement
-/// on a round patch (a hemisphere's, [`FingerShape::Disc`]) [-]: at safety factor `s` the
-/// tick asks for the force that holds `(s·f_t, 1.5·s·m_n)`, while `N_slip` stays the
-/// model's own answer. A hemicylinder's moment carries the plain `s`.
-///
-/// Why: on the brush finger the drops of `shake` and `lift-hold` from moderate safety
-/// factors up were turns of round patches. A turn of 0.2 rad, the bench's drop, is a slide
-/// of `0.2·a` at the rim, 0.4–0.8 mm on a patch of radius 2–4 mm: the same creep of the
-/// rim turns a round patch three to five times as far as a hemicylinder's long patch.
-/// Chosen on seeds that score nothing (1.5 of 1.5, 2 and 2.5 was the cheapest that left
-/// the round patches no `shake` drop); tested on seeds no run had used, where it dropped
-/// fewer trials for less force at the bench's choice (docs/bench.md, "Round patches:
-/// where the turns are"). Cost: one multiplication a tick.
+/// The factor \[-\] on `s` that a round patch's moment ([`FingerShape::Disc`]) carries in
+/// the tick's requirement, one multiplication; `N_slip` stays the model's own. Chosen in
+/// docs/decisions/round-patch-torsion-factor.md, shown by
+/// `tests/controller.rs::a_round_patchs_moment_carries_its_own_factor_in_the_tick`.
 pub const DISC_TORSION_SAFETY_FACTOR: f64 = 1.5;
 
 /// How the tick tests the load against the limit surface (docs/model.md, "The slip-prevention
@@ -137,12 +128,9 @@ pub const DISC_TORSION_SAFETY_FACTOR: f64 = 1.5;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Mode {
-    /// The Eq. 10 ellipse with the exact pitch at `l/a(N)`. Cheapest; but the exact surface
-    /// lies inside the ellipse near the diagonal, by (radially, `k = 2`) 2.2 % at
-    /// `l/a = 0.5`, 7.0 % at `l/a = 1`, 11 % at 2.6 and 12 % for long patches, 5.9 % on
-    /// the disc (`host-sim fls --format json`, `max_relative_gap`). For combined loads this
-    /// mode therefore asks for up to that much less force than the exact surface would: the
-    /// safety factor must cover it.
+    /// The Eq. 10 ellipse with the exact pitch at `l/a(N)`, shrunk at start-up into the exact
+    /// surface (inside Eq. 10 by up to 12 % radially for `k = 2`): cheapest, never asks less
+    /// (docs/decisions/conservative-capacity.md; checked by `tests/conservative.rs`).
     Ellipse,
     /// The exact limit surface, precomputed as a table on a grid of aspect ratios.
     Table,
@@ -172,9 +160,9 @@ with_schema! {
     #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct SkewParams {
-        /// `Δ/a ∈ [0, 1)`: how far the peak can move (paper: 0.9).
+        /// `Δ/a ∈ [0, 1)`: how far the peak can move (the paper's: [`SkewParams::PAPER`]).
         pub delta_over_a: f64,
-        /// `α > 0`: how fast it moves with the centre of rotation (paper: 1.1).
+        /// `α > 0`: how fast it moves with the centre of rotation.
         pub alpha: f64,
         /// `h/a`: the bulge of the peak's locus (`Δ/2` is the paper's circular path; only
         /// the disc feels it).
@@ -183,7 +171,7 @@ with_schema! {
 }
 
 impl SkewParams {
-    /// The paper's case: `Δ/a = 0.9`, `α = 1.1`, circular locus.
+    /// The paper's case, with its circular locus `h = Δ/2` (docs/model.md, "Pressure").
     pub const PAPER: Self = Self {
         delta_over_a: 0.9,
         alpha: 1.1,
@@ -267,8 +255,8 @@ with_schema! {
         /// prior of the lag the controller identifies online and commands ahead of a
         /// rising load by (see [`lead`](super::lead)). 0 says "not told": the identifier
         /// starts from a 40 ms guess ([`UNTOLD_LAG_S`](super::actuator::UNTOLD_LAG_S)).
-        /// A lag under 2.5 tick periods (one tick, say) describes an ideal actuator, which
-        /// gets no lead.
+        /// A lag under [`LAG_FLOOR_TICKS`](super::actuator::LAG_FLOOR_TICKS) tick periods
+        /// (one tick, say) describes an ideal actuator, which gets no lead.
         pub actuator_lag_s: f64,
         /// Fastest rise of the actuator itself [N/s] (`> 0`; `f64::INFINITY` when it is not
         /// slew-limited). Planned into the lead horizon so that a slew-limited actuator
@@ -285,18 +273,10 @@ impl Default for ControllerConfig {
 }
 
 impl ControllerConfig {
-    /// The defaults, the one place they are written: a hemicylindrical silicone fingertip
-    /// in the paper's range: `μ = 0.8`, `k = 2`, no skew, `a = 2.5 mm · N^{1/2}`,
-    /// `l = 10 mm`, 0.2–20 N, 1 kHz, an actuator nobody described (its lag identified
-    /// online from a 40 ms guess). The mode and the safety factor, ellipse mode at
-    /// `s = 1.35`, are the ones the bench chose on sixteen held-out seeds (8017 to 8032),
-    /// safety first on the front of drops against force (`host-sim`
-    /// `bench::default_choice`; docs/bench.md, "The default"), once a round patch's moment
-    /// carried [`DISC_TORSION_SAFETY_FACTOR`]; a cycling load gets `s` times the lead's
-    /// `CYCLIC_SAFETY_FACTOR` (1.45), a steady one `s` times a factor that ramps down to
-    /// `STEADY_SAFETY_FACTOR` (0.85) over `STEADY_RAMP_S` (0.5 s). Before that factor, table
-    /// mode at `s = 1.75` was the default (chosen on thirty-two other held-out seeds), and
-    /// ellipse mode at `s = 1.3` before that.
+    /// The defaults, the one place they are written: a hemicylindrical silicone fingertip in
+    /// the paper's range, an actuator nobody described. Mode and `s` are the held-out run's
+    /// choice (docs/decisions/default-choice-rule.md, docs/decisions/held-out-seeds.md),
+    /// checked by `host-sim/tests/default_choice.rs::the_default_is_the_held_out_runs_choice`.
     pub const DEFAULT: Self = Self {
         mu: 0.8,
         shape: FingerShape::Rect,

@@ -26,11 +26,11 @@ pub trait TickMath<T: Real>: Copy + Default + core::fmt::Debug {
 
     /// A square root in the start-up's precision `P` for its limit-surface kernels, when
     /// the backend has one that is correctly rounded (so the grid comes out bit for bit as
-    /// with `libm`'s) and cheaper, such as the firmware's `VSQRT` for `P = f32`
-    /// (`host-sim/tests/firmware_costs.rs` measures the start-ups). `None`, the default,
-    /// keeps `libm`'s. An approximate square root (such as [`Micromath`]'s) must not be
-    /// offered here. `extern "C"`: it cannot unwind, which keeps the start-up's no-panic
-    /// proof.
+    /// with `libm`'s) and cheaper, such as the firmware's `VSQRT` for `P = f32` (its gain:
+    /// docs/decisions/firmware-size-levers.md; `host-sim/tests/firmware_costs.rs` measures
+    /// the start-ups). `None`, the default, keeps `libm`'s. An approximate square root (such
+    /// as [`Micromath`]'s) must not be offered here. `extern "C"`: it cannot unwind, which
+    /// keeps the start-up's no-panic proof.
     fn startup_sqrt<P: Real>() -> Option<extern "C" fn(P) -> P> {
         None
     }

@@ -198,7 +198,8 @@ impl<T: Real> Capacity<T> {
                 *p = T::of(pos.to_f64());
             }
         }
-        // One table (1.5 KB in f32), swept again for each aspect.
+        // One table, swept again for each aspect: the stack peak's lever in
+        // docs/decisions/firmware-size-levers.md.
         let mut table = FlsTable::<P, { MAX_TABLE_SAMPLES + 1 }>::empty(model.config().shape);
         for e in 0..shapes {
             let aspect = if varying {
@@ -312,11 +313,9 @@ fn inscribed_ellipse<P: Real>(
             expected: "a limit surface inside Eq. 10's ellipse",
         });
     }
-    // A limit surface lies inside Eq. 10's ellipse by a few per cent (2 to 12 % radially
-    // for k = 2, docs/model.md). Where the sampling degrades (extreme aspect ratios, or f32
-    // far from l/a = 1) the fit comes out smaller and the tick asks for more force than it
-    // needs, which is safe; but a semi-axis of 1e-19 (f32, l/a near 1e12: a fuzz finding)
-    // made every tick ask for infinite force. Refuse a fit that small.
+    // Degraded sampling shrinks the fit (more force, safe); one too small asks infinite force
+    // every tick, so it is refused (the fuzz finding of
+    // `tests/controller.rs::an_aspect_the_start_up_cannot_sample_is_refused_by_name`).
     let plausible = |x: P| x >= P::of(INSCRIBED_SEMI_AXIS_MIN);
     if plausible(e.x_semi_axis) && plausible(e.y_semi_axis) {
         Ok(e)

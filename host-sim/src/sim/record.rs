@@ -65,7 +65,8 @@ pub struct RunSummary {
     /// Controller name.
     pub controller: String,
     /// Whether the object was dropped ([`crate::sim::run::is_drop`]: slid more than
-    /// 10 mm or turned more than 0.2 rad).
+    /// 10 mm or turned more than 0.2 rad;
+    /// `host-sim/tests/bench.rs::a_drop_is_more_than_10_mm_or_0_2_rad`).
     pub dropped: bool,
     /// Number of separate slip episodes.
     pub slip_events: u64,

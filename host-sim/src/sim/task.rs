@@ -52,7 +52,7 @@ pub enum Phase {
         frequency_hz: f64,
     },
     /// Pull: an external force along the cylinder axis and a twisting moment, ramped in
-    /// over the first 10 % of the phase.
+    /// smoothly at the start of the phase ([`apply`]).
     Pull {
         /// Start \[s\].
         start_s: f64,
@@ -119,8 +119,8 @@ fn smoothstep(x: f64) -> f64 {
 }
 
 /// The part of the object's weight the grasp carries at `t`: 0 before the first lift
-/// (the object rests on its support), rising smoothly over the first 20 % of that lift,
-/// then 1. Without a lift phase the grasp carries it all along.
+/// (the object rests on its support), rising smoothly over the start of that lift, then
+/// 1. Without a lift phase the grasp carries it all along.
 pub fn support_fraction(task: &[Phase], t_s: f64) -> f64 {
     match task.iter().find(|p| matches!(p, Phase::Lift { .. })) {
         Some(p) => {

@@ -2,7 +2,8 @@
 //! the run's length: the CSV gets every tick as it is produced, the plots get a
 //! [`PlotTrace`].
 //!
-//! - **Samples**: at most [`MAX_TRACE_SAMPLES`] (16 384; 2.2 MB), every `stride`-th tick
+//! - **Samples** (docs/decisions/simulate-bounded-memory.md): at most [`MAX_TRACE_SAMPLES`]
+//!   (16 384; 2.2 MB), every `stride`-th tick
 //!   plus the last. The stride starts at 1 and doubles whenever the buffer fills (every
 //!   other kept sample is dropped), so a run of up to 16 384 ticks is kept whole and a
 //!   longer one at a uniform stride of at most twice `ticks/16 384`. The plots draw at most
@@ -13,6 +14,9 @@
 //!   episode is missed; at most [`MAX_SLIP_INTERVALS`] are kept, merging the closest ones
 //!   when there would be more (the plot merges those closer than 1/1000 of its time axis
 //!   anyway).
+//!
+//! Why these bounds: docs/decisions/simulate-bounded-memory.md; `host-sim/tests/bounded_cli.rs`
+//! checks them.
 
 use super::record::Sample;
 

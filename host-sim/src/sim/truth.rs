@@ -3,9 +3,8 @@
 //! true contact size).
 //!
 //! The surfaces are precomputed once per run on a fine grid: 256 centres of rotation per
-//! sweep (chords within about 1.5e-5 of the surface) and, for a rectangle whose contact
-//! grows with the load, 24 aspect ratios spaced in `ln(l/a)` over the forces the run can
-//! reach (interpolation within about 2e-4). A step then costs two table lookups.
+//! sweep and, for a rectangle whose contact grows with the load, 24 aspect ratios spaced
+//! in `ln(l/a)` over the forces the run can reach. A step then costs two table lookups.
 
 use crate::sim::scene::{Scene, SceneError};
 use softgrip::contact::ContactSize;

@@ -8,7 +8,7 @@
 //! | `coulomb` | `N = s·f_t/μ`: translation only, torsion ignored |
 //! | `box` | `N = s·max(f_t/μ, m_n/m̂)`, `m̂ = μ·a_ref·pitch` (a box-shaped limit, as some tactile-gripper code uses) |
 //! | `fixed-torsion` | `N = s·sqrt((f_t/μ)² + (m_n/(μ_t))²)`, `μ_t = μ·a_ref·pitch`: the elliptic soft-contact cone of physics engines, with a patch of constant size |
-//! | `slip-servo` | starts light; after a detected slip raises the force by half plus 0.5 N, then relaxes slowly |
+//! | `slip-servo` | starts light; after a detected slip raises the force by half plus a fixed step (`baseline.rs`), then relaxes slowly |
 //!
 //! `a_ref·pitch` is the fixed patch's torsion arm: by default that of the contact at the
 //! constant baseline's force, the size a fixed-patch model would be tuned at; a scene can

@@ -4,9 +4,9 @@
 //! stall force).
 
 use super::spec::{Range, Settings};
+use super::{Effect, World};
 use crate::sim::finger::Finger;
 use rand_chacha::ChaCha8Rng;
-use super::{Effect, World};
 use serde::Deserialize;
 
 /// `[effect.actuator]`.
@@ -54,8 +54,8 @@ pub struct Actuator {
 }
 
 impl Actuator {
-    /// From its settings: `time_constant_s` (0.02), `slew_n_per_s` (200), `max_force_n`
-    /// (15).
+    /// From its settings: `time_constant_s`, `slew_n_per_s`, `max_force_n` (defaults in
+    /// [`ActuatorSettings`]'s `Default`).
     pub fn new(s: &ActuatorSettings) -> Self {
         Self {
             time_constant_s: s.time_constant_s,

@@ -10,9 +10,9 @@
 //! model assumes, so it resists less torsion.
 
 use super::spec::{Range, Settings};
+use super::{Effect, World};
 use crate::sim::finger::Finger;
 use rand_chacha::ChaCha8Rng;
-use super::{Effect, World};
 use serde::Deserialize;
 
 /// `[effect.creep]`.
@@ -56,7 +56,8 @@ pub struct Creep {
 }
 
 impl Creep {
-    /// From its settings: `time_constant_s` (0.3), `instant_fraction` (0.6).
+    /// From its settings: `time_constant_s`, `instant_fraction` (defaults in
+    /// [`CreepSettings`]'s `Default`).
     pub fn new(s: &CreepSettings) -> Self {
         Self {
             time_constant_s: s.time_constant_s,

@@ -4,8 +4,8 @@
 //! slip-control experiments cited by the paper's introduction).
 
 use super::spec::{Range, Settings};
-use crate::sim::finger::Finger;
 use super::{Effect, World};
+use crate::sim::finger::Finger;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
@@ -62,8 +62,8 @@ pub struct Disturbance {
 }
 
 impl Disturbance {
-    /// From its settings (`rate_hz` (2), `force_n` (1.0), `moment_nm` (0.01),
-    /// `duration_s` (0.05)) and its random stream.
+    /// From its settings (`rate_hz`, `force_n`, `moment_nm`, `duration_s`; defaults in
+    /// [`DisturbanceSettings`]'s `Default`) and its random stream.
     pub fn new(s: &DisturbanceSettings, rng: ChaCha8Rng) -> Self {
         Self {
             rate_hz: s.rate_hz,

@@ -6,9 +6,9 @@
 //! `support_fraction` (0 on the table, 1 once lifted) scales both.
 
 use super::spec::{Range, Settings};
+use super::{Effect, World};
 use crate::sim::finger::Finger;
 use rand_chacha::ChaCha8Rng;
-use super::{Effect, World};
 use serde::Deserialize;
 
 /// `[effect.gravity]`.
@@ -42,7 +42,7 @@ pub struct Gravity {
 }
 
 impl Gravity {
-    /// From its settings (`g_m_s2`, default 9.81).
+    /// From its settings (`g_m_s2`; default in [`GravitySettings`]'s `Default`).
     pub fn new(s: &GravitySettings) -> Self {
         Self { g_m_s2: s.g_m_s2 }
     }

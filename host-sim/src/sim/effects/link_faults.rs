@@ -5,8 +5,8 @@
 //! so every frame is accounted for.
 
 use super::spec::{Range, Settings};
-use crate::sim::finger::Finger;
 use super::{Effect, LinkFate};
+use crate::sim::finger::Finger;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
@@ -58,8 +58,8 @@ pub struct LinkFaults {
 }
 
 impl LinkFaults {
-    /// From its settings (probabilities per frame: `bit_flip_prob` (0.01),
-    /// `truncate_prob` (0.005), `drop_prob` (0.005)) and its random stream.
+    /// From its settings (probabilities per frame: `bit_flip_prob`, `truncate_prob`,
+    /// `drop_prob`; defaults in [`LinkFaultsSettings`]'s `Default`) and its random stream.
     pub fn new(s: &LinkFaultsSettings, rng: ChaCha8Rng) -> Self {
         Self {
             bit_flip_prob: s.bit_flip_prob,

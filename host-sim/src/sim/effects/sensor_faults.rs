@@ -4,8 +4,8 @@
 //! strain gauge does).
 
 use super::spec::{Range, Settings};
-use crate::sim::finger::Finger;
 use super::{Effect, World};
+use crate::sim::finger::Finger;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
@@ -63,8 +63,9 @@ pub struct SensorFaults {
 }
 
 impl SensorFaults {
-    /// From its settings (`dropout_prob` (0.01 per frame), `nan_prob` (0.005),
-    /// `saturation_n` (infinite: off), `saturation_nm` (infinite)) and its random stream.
+    /// From its settings (`dropout_prob` and `nan_prob` per frame, `saturation_n` and
+    /// `saturation_nm`, infinite for off; defaults in [`SensorFaultsSettings`]'s `Default`)
+    /// and its random stream.
     pub fn new(s: &SensorFaultsSettings, rng: ChaCha8Rng) -> Self {
         Self {
             dropout_prob: s.dropout_prob,

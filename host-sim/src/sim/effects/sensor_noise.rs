@@ -3,8 +3,8 @@
 //! usual error model of strain-gauge F/T sensors).
 
 use super::spec::{Range, Settings};
-use crate::sim::finger::Finger;
 use super::{Effect, World};
+use crate::sim::finger::Finger;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use serde::Deserialize;
@@ -66,8 +66,9 @@ pub struct SensorNoise {
 }
 
 impl SensorNoise {
-    /// From its settings (`force_sd_n` (0.02), `moment_sd_nm` (2e-4), `normal_sd_n`
-    /// (0.02), `bias_force_n` (0), `bias_moment_nm` (0)) and its random stream.
+    /// From its settings (`force_sd_n`, `moment_sd_nm`, `normal_sd_n`, `bias_force_n`,
+    /// `bias_moment_nm`; defaults in [`SensorNoiseSettings`]'s `Default`) and its random
+    /// stream.
     pub fn new(s: &SensorNoiseSettings, rng: ChaCha8Rng) -> Result<Self, String> {
         let normal = |key: &str, sd: f64| {
             Normal::new(0.0, sd).map_err(|err| format!("effect.sensor_noise.{key}: {err}"))

@@ -4,9 +4,9 @@
 //! the controller is not told (it models the symmetric profile).
 
 use super::spec::{Range, Settings};
-use rand_chacha::ChaCha8Rng;
 use super::Effect;
 use crate::sim::finger::Finger;
+use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
 use softgrip::controller::{FingerShape, SkewParams};
 
@@ -14,7 +14,8 @@ use softgrip::controller::{FingerShape, SkewParams};
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SkewedPressureSettings {
-    /// Shift of the pressure peak `Δ/a`, in [0, 0.999999].
+    /// Shift of the pressure peak `Δ/a`, in [0, 0.999999] (the top skew gives finite
+    /// answers: `host-sim/tests/fls_cli.rs::hard_values_give_finite_answers`).
     pub delta_over_a: f64,
     /// Shape exponent `α`, in [1e-9, 1e9].
     pub alpha: f64,
@@ -57,9 +58,9 @@ pub struct SkewedPressure {
 }
 
 impl SkewedPressure {
-    /// From its settings (`delta_over_a` (0.9), `alpha` (1.1), `locus_over_a` (0 on the
-    /// disc, where a sideways locus folds the surface; Δ/2 on the rectangle, where it
-    /// changes nothing)) and the finger's shape.
+    /// From its settings (`delta_over_a`, `alpha`, `locus_over_a`: by default 0 on the
+    /// disc, where a sideways locus folds the surface, Δ/2 on the rectangle, where it
+    /// changes nothing) and the finger's shape.
     pub fn new(s: &SkewedPressureSettings, finger: &Finger) -> Self {
         let delta = s.delta_over_a;
         let default_locus = if finger.shape == FingerShape::Disc {

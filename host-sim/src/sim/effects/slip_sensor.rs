@@ -13,21 +13,23 @@
 //! - `None` otherwise.
 //!
 //! Imperfections, each a scene setting:
-//! - `latency_s` (default 0.005 s): the signal reports the contact as it was this long
-//!   before (rounded to whole ticks, at least one tick: the sensor sees the previous
-//!   step's contact);
-//! - `miss_probability` (default 0.05), **per episode**: when the true signal turns on
-//!   (from `None` to `Incipient` or `Gross`), with this probability the whole episode,
-//!   until the true signal is `None` again, goes unreported;
-//! - `false_alarm_rate_hz` (default 0.2 Hz): a Poisson process of false `Incipient`
-//!   reports, each one tick long, while the true signal is `None`.
+//! - `latency_s` \[s\]: the signal reports the contact as it was this long before
+//!   (rounded to whole ticks, at least one tick: the sensor sees the previous step's
+//!   contact);
+//! - `miss_probability`, **per episode**: when the true signal turns on (from `None` to
+//!   `Incipient` or `Gross`), with this probability the whole episode, until the true
+//!   signal is `None` again, goes unreported;
+//! - `false_alarm_rate_hz` \[Hz\]: a Poisson process of false `Incipient` reports, each
+//!   one tick long, while the true signal is `None`.
+//!
+//! The defaults are [`SlipSensorSettings`]'s `Default`.
 //!
 //! It draws from its own random stream (seeded from the scene seed and its name), so
 //! listing it changes no other effect's random numbers.
 
 use super::spec::{Range, Settings};
-use crate::sim::finger::Finger;
 use super::{Effect, World};
+use crate::sim::finger::Finger;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
@@ -96,9 +98,9 @@ pub struct SlipSensor {
 }
 
 impl SlipSensor {
-    /// From its settings (`incipient_utilisation` (0.9), `latency_s` (0.005 s),
-    /// `miss_probability` (0.05, per episode), `false_alarm_rate_hz` (0.2 Hz)) and its
-    /// random stream.
+    /// From its settings (`incipient_utilisation`, `latency_s`, `miss_probability` per
+    /// episode, `false_alarm_rate_hz`; defaults in [`SlipSensorSettings`]'s `Default`) and
+    /// its random stream.
     pub fn new(s: &SlipSensorSettings, rng: ChaCha8Rng) -> Self {
         Self {
             incipient_utilisation: s.incipient_utilisation,

@@ -171,7 +171,7 @@ fn time_range(runs: &[(&str, &[Sample])]) -> (f64, f64) {
     }
 }
 
-/// The force axis [N]: 10 % beyond the normal forces of the runs that never slipped (of
+/// The force axis [N]: a margin beyond the normal forces of the runs that never slipped (of
 /// all runs when every run `slipped`) and the first run's load, and beyond zero.
 fn force_range(runs: &[(&str, &[Sample])], slipped: &[bool]) -> (f64, f64) {
     let any_held = slipped.iter().any(|s| !s);

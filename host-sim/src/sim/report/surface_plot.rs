@@ -8,7 +8,8 @@ pub(super) const SLIP_MARK_LABEL: &str = "slipping";
 
 /// The upper end `L` of both axes of [`plot_surface`]: `max(1.2, 1.05 × the 99th
 /// percentile of the runs' finite coordinates, 1.05 × the largest finite surface
-/// coordinate)`, at most 10⁶ (always finite).
+/// coordinate)`, at most 10⁶ (always finite;
+/// `host-sim/tests/report.rs::surface_axes_follow_the_99th_percentile_and_stay_finite`).
 pub fn surface_axis_limit(runs: &[(&str, &[Sample])], surface: &[(f64, f64)]) -> f64 {
     let coords = runs
         .iter()

@@ -20,8 +20,9 @@
 //! **The drop** (the one definition, used by `simulate`, `bench` and the tests): once the
 //! object has slid more than [`DROP_DISTANCE_M`] (10 mm) or turned more than
 //! [`DROP_ROTATION_RAD`] (0.2 rad) relative to the fingertips it is lost from the grasp
-//! ([`is_drop`]); the run reports `dropped = true` and the time (metric `dropped_at_s`),
-//! and slip is no longer accumulated.
+//! ([`is_drop`]; `host-sim/tests/bench.rs::a_drop_is_more_than_10_mm_or_0_2_rad`); the run
+//! reports `dropped = true` and the time (metric `dropped_at_s`), and slip is no longer
+//! accumulated.
 //!
 //! softgrip's configuration for a scene, and its errors named by scene key, are in
 //! `run/config.rs` (re-exported here). The tick itself is `run/lockstep.rs`: stages 1–3

@@ -1,5 +1,7 @@
 //! Grasp scenes: TOML files that say what to simulate and which effects to include.
 //!
+//! An example (illustrative values; `host-sim/tests/simulate.rs` runs the shipped scenes
+//! of `host-sim/scenes/`, written in this form):
 //! ```toml
 //! description = "Lift a 200 g object and hold it"
 //! duration_s = 3.0
@@ -7,7 +9,6 @@
 //! seed = 1
 //! expected_slip = false
 //! effects = ["gravity", "sensor_noise"]
-//!
 //! [finger]            # the true fingertip (the controller is told the same, less skew)
 //! shape = "rect"      # rect | disc
 //! k = 2.0
@@ -17,24 +18,20 @@
 //! half_length_m = 0.01
 //! young_modulus_pa = 3e5
 //! poisson = 0.45
-//!
 //! [object]
 //! mass_kg = 0.2
 //! com_offset_m = 0.02      # lever arm of gravity about the grasp axis
 //! inertia_kg_m2 = 2e-4     # about the grasp axis
-//!
 //! [[task]]                 # load phases; they add up where they overlap
 //! kind = "lift"            # lift | hold | twist | shake | pull
 //! start_s = 0.2
 //! end_s = 0.8
 //! accel_m_s2 = 4.0
-//!
 //! [controller]             # any field of softgrip's ControllerConfig (all optional)
 //! safety = 1.3
 //! mu = 0.7                 # the μ the controller believes (default: [finger] mu, the true one)
 //! actuator_lag_s = 0.015   # the measured actuator lag [s] (default 0: no anticipation)
 //! actuator_slew_n_per_s = 300.0  # the measured slew limit [N/s] (default: unlimited)
-//!
 //! [effect.sensor_noise]    # settings of an effect (read only if it is listed)
 //! force_sd_n = 0.02
 //! ```

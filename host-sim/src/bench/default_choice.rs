@@ -30,8 +30,8 @@
 //! Each setting also carries its drops family by family and at the hand's limit, and the
 //! outcome carries the same rule's choice without the trials at the hand's limit (when
 //! the run has the `constant` sweep that finds them): what sets the choice apart from
-//! trials no grip below 95 % of `N_max` holds. Cost: one look-up of five rows per
-//! setting.
+//! trials no grip below [`AT_LIMIT_FRACTION`](stats::AT_LIMIT_FRACTION) of `N_max` holds.
+//! Cost: one look-up of five rows per setting.
 
 use super::stats::{self, wilson95, Row};
 use super::sweep::Sweep;

@@ -5,26 +5,12 @@
 //! Each trial draws its own fingertip ([`super::trial_finger`]: by default a brush
 //! finger, a physical plant softgrip does not model), measures it in the lab and
 //! calibrates every controller from those same rows ([`super::lab`]); no controller
-//! reads the plant. All trials share softgrip's default limits (`N_min = 0.2` N,
-//! `N_max = 20` N), at 1 kHz, and last 1.2 to 1.5 s.
+//! reads the plant. All trials share softgrip's default limits ([`N_MIN_N`], [`N_MAX_N`]),
+//! at 1 kHz.
 //!
-//! | family | load | ranges (uniform) | effects |
-//! | --- | --- | --- | --- |
-//! | `lift-hold` | lift (0.1–0.6 s) then hold | mass 0.05–0.5 kg, COM offset 0–20 mm, peak lift acceleration 1–5 m/s² | gravity, sensor noise |
-//! | `shake` | lift at 2 m/s², then shake (0.5–1.5 s) | mass 0.05–0.3 kg, COM offset 0–10 mm, 2–8 Hz, 2–10 m/s², actuator time constant 5–30 ms, slew 100–500 N/s (not told to the controllers unless `tell_actuator`) | gravity, sensor noise, actuator |
-//! | `twist` | twist about the grasp axis (0.2–1.2 s) | peak moment 5–100 % of the grasp's torsion capacity at `N_max` (two contacts, the plant's own onset), mass 0.02–0.15 kg, COM offset 0–5 mm | gravity, sensor noise |
-//! | `mu-mismatch` | as `lift-hold` | the finger's μ (static and kinetic) × U(0.7, 1.3) after the lab measured it, mass 0.05–0.4 kg, COM 0–15 mm, lift 1–4 m/s²; every other trial lists the slip sensor, drawn per trial (below) | gravity, sensor noise, (slip sensor) |
-//! | `faults` | as `lift-hold` | mass 0.05–0.4 kg, COM 0–15 mm, lift 1–4 m/s²; noise 0.01–0.05 N; dropouts 0–2 %, NaN 0–1 %; link delay 0–3 ticks, bit flips 0–2 %, truncation 0–1 %, drops 0–2 % | gravity, sensor noise and faults, link latency and faults |
-//!
-//! The slip sensor of a `mu-mismatch` trial: it reports incipient slip once the share of
-//! the patch that slides (on the brush finger; the load's utilisation on the limit
-//! surface) passes a threshold drawn from U(0.2, 0.9), so that low thresholds fire
-//! persistently on creep with no gross slip coming; latency U(2, 20) ms; it misses an
-//! episode with probability U(0, 0.1) and raises false alarms at U(0, 1) Hz.
-//!
-//! `--hard` ([`Ranges::hard`]) moves three families to the ranges where the audit found
-//! softgrip weakest: shakes of 6–15 Hz through 20–60 ms actuators, twists of 80–100 % of
-//! the capacity, and a true μ of 0.5–1.0 × the measured one.
+//! The families, their load phases, effects and ranges (uniform draws, [`Ranges`]), the
+//! `mu-mismatch` family's slip sensor and the `--hard` ranges ([`Ranges::hard`]) are
+//! tabled in docs/bench.md, "What a trial is".
 
 use super::lab::{self, Beliefs};
 use super::onset_table::OnsetTable;

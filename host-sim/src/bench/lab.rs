@@ -2,7 +2,7 @@
 //! data of that finger, never read from the plant.
 //!
 //! The lab ([`crate::experiment`]) measures the finger at [`LAB_FORCES_N`], once each,
-//! with 2 % relative noise on every recorded value ([`LAB_NOISE`]): an indentation test
+//! with relative noise on every recorded value ([`LAB_NOISE`]): an indentation test
 //! (contact half-width), a slip test (tangential ramps) and a torsion test (moment
 //! ramps). From those rows:
 //! - **softgrip** is calibrated as `host-sim calibrate --friction-contact` calibrates
@@ -24,8 +24,7 @@
 //!   of one size, fitted in the least-squares sense on the log scale, as a lab would fit
 //!   a model that has one).
 //!
-//! Cost: 6 indentations and 12 slip onsets on the rig (about 0.3 s on a brush finger
-//! of 16×16 elements, a few ms on the limit surface) and a fit of a few milliseconds.
+//! Cost: 6 indentations and 12 slip onsets on the rig, and a fit.
 
 use crate::experiment::protocol::{self, Noise, Protocol};
 use crate::experiment::Rig;

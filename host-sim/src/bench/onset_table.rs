@@ -10,11 +10,12 @@
 //! `ln N` and `ρ` bilinearly in `(ln N, φ)`.
 //!
 //! Accuracy: on rays between the nodes (forces between its force nodes, directions
-//! between its angles) the tabulated edge is within 2.3 % of the finger's own onset
-//! (`cargo test --release -p host-sim --test bench_lab -- --nocapture` prints the worst
-//! case, two drawn brush fingers, 12 rays each). The oracle is the reference every
-//! controller is divided by, so an error common to a trial scales all of them alike. Cost: `FORCE_NODES × (ANGLES − 2) + 2·FORCE_NODES` onsets
-//! to build (about 0.6 s on a 16×16 brush finger), a few flops per lookup.
+//! between its angles) the tabulated edge is within 3 % of the finger's own onset
+//! (`host-sim/tests/bench_lab.rs::the_brush_oracle_table_agrees_with_the_finger_s_own_onsets`,
+//! which prints the worst case with `--nocapture`). The oracle is the reference every
+//! controller is divided by, so an error common to a trial scales all of them alike.
+//! Cost: `FORCE_NODES × (ANGLES − 2) + 2·FORCE_NODES` onsets to build, a few flops per
+//! lookup.
 
 use crate::experiment::Rig;
 

@@ -43,7 +43,7 @@ pub const REL_TOL: f64 = 1e-6;
 /// The least force in `[n_min_n, n_max_n]` \[N\] at which the true load `(ft_n, mn_nm)`
 /// (per contact, \[N\] and [N·m]) has a true utilisation of at most 1; `n_max_n` when none.
 /// `guess` \[N\] (the previous tick's answer) only speeds the search: it is bracketed
-/// within ±5 % of it when it can be, then bisected to [`REL_TOL`].
+/// close around it when it can be, then bisected to [`REL_TOL`].
 pub fn least_holding_force_n(
     truth: &dyn TrueLimit,
     ft_n: f64,

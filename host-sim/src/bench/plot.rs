@@ -12,7 +12,7 @@ use std::path::Path;
 const SIZE: (u32, u32) = (1500, 650);
 
 /// Drop rates up to this [%] are the right panel's range: the region of the Pareto check
-/// (baseline settings that drop at most 10 %), with room for the markers.
+/// ([`super::report::DOMINANCE_MAX_DROP_RATE`]), with room for the markers.
 pub const ZOOM_DROP_PCT: f64 = 12.0;
 
 /// The SVG text of the Pareto plot of `family`'s rows: every setting on the left, the
@@ -144,8 +144,8 @@ fn draw_zoom<DB: DrawingBackend>(
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let all = curves(rows);
     let inside = |p: &Point| p.1 <= ZOOM_DROP_PCT;
-    // From the least force that drops at most ZOOM_DROP_PCT to 1.3 times the least force at
-    // which some baseline reaches its fewest drops (none, unless some trials cannot be held
+    // From the least force that drops at most ZOOM_DROP_PCT to a margin beyond the least force
+    // at which some baseline reaches its fewest drops (none, unless some trials cannot be held
     // at all), or softgrip's farthest default.
     let x_min = all
         .iter()

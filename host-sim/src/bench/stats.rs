@@ -1,6 +1,6 @@
 //! The summary rows of a bench: per family, controller and knob value, the drops (with
-//! a Wilson 95 % interval), force over the oracle and slip, over the trials of one seed
-//! or of every seed pooled.
+//! a Wilson 95 % interval, `host-sim/tests/bench.rs::the_wilson_interval_brackets_the_rate`), force over the oracle and slip, over the trials
+//! of one seed or of every seed pooled.
 
 use super::families::N_MAX_N;
 use super::sweep::{settings, RunRow, Sweep, TrialResult};
@@ -45,7 +45,7 @@ pub struct Row {
     pub drops_at_limit: Option<usize>,
     /// `drops/trials`.
     pub drop_rate: f64,
-    /// Wilson score 95 % interval of the drop rate, `[low, high]`.
+    /// Wilson score interval of the drop rate, `[low, high]` ([`wilson95`]).
     pub drop_rate_ci95: [f64; 2],
     /// Mean over trials of (time-averaged force / oracle's time-averaged force) [-].
     pub force_over_oracle: f64,
@@ -59,7 +59,8 @@ pub struct Row {
     pub slip_events: f64,
 }
 
-/// The Wilson score interval at 95 % for `k` successes in `n` trials.
+/// The Wilson score interval at 95 % for `k` successes in `n` trials
+/// (`host-sim/tests/bench.rs::the_wilson_interval_brackets_the_rate`).
 pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
     if n == 0 {
         return [0.0, 1.0];
@@ -73,12 +74,10 @@ pub fn wilson95(k: usize, n: usize) -> [f64; 2] {
 }
 
 /// A holdable trial is **at the hand's limit** when no constant grip of the grid below
-/// this fraction of `N_max` holds it, even one applied from the trial's start, before
-/// any load [-]. Such a trial leaves a controller that must see the load before it grips
-/// at most 5 % of force to spare: about the spread of the lab's own calibration of μ
-/// (table mode: 0.96–1.03 of the brush finger's onset on pure force, docs/bench-fingers.md),
-/// and it reaches `N_max` later than a grip that was there from the start. The tables
-/// count the drops on these trials apart; every other count keeps them.
+/// this fraction of `N_max` holds it, even one applied from the trial's start [-]
+/// (`host-sim/tests/bench.rs::a_trial_is_at_the_hands_limit_when_no_grip_below_95_percent_of_it_holds`).
+/// The 5 % left is about the spread of the lab's calibration of μ (docs/bench-fingers.md).
+/// The tables count the drops on these trials apart; every other count keeps them.
 pub const AT_LIMIT_FRACTION: f64 = 0.95;
 
 /// The columns of the `constant` sweep's settings, in increasing force.
@@ -188,8 +187,9 @@ pub fn rows(
 /// the run's grid that holds it, chosen knowing the trial in advance. No causal
 /// controller can choose so (it would have to know the trial's peak load and its plant's
 /// creep before they come); the figure says how far the oracle, which follows the load
-/// tick by tick with no lag, lies from any steady grip. The 0.5 N grid makes it at most
-/// 0.5 N high per trial.
+/// tick by tick with no lag, lies from any steady grip; it is high by at most one step of
+/// the grid per trial
+/// (`host-sim/tests/bench.rs::the_clairvoyant_constant_is_the_least_holding_grip_of_each_holdable_trial`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Clairvoyant {
     /// Family.

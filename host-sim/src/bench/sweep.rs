@@ -41,19 +41,19 @@ pub const BOX_DEFAULT_SAFETY: f64 = 3.0;
 pub const FIXED_TORSION_DEFAULT_SAFETY: f64 = 2.5;
 /// `slip-servo`'s default floor \[N\] (held-out choice, as [`CONSTANT_DEFAULT_N`]).
 pub const SLIP_SERVO_DEFAULT_N: f64 = 4.0;
-/// The margin of common practice, 1.3, at which the model-based baselines ran by default
-/// before their defaults were chosen by the rule; the bench reports softgrip's default
-/// against them at it too.
+/// The margin of common practice, at which the model-based baselines ran by default before
+/// their defaults were chosen by the rule; the bench reports softgrip's default against
+/// them at it too (the README's claim, `host-sim/tests/bench_claims.rs`).
 pub const COMMON_PRACTICE_SAFETY: f64 = 1.3;
 
-/// The safety factors every controller with one sweeps: 1.0 to 2.0 in steps of 0.05,
-/// then 2.5 and 3.0.
+/// The safety factors every controller with one sweeps: fine steps up to 2, then two
+/// coarse ones.
 pub const SAFETY_GRID: [f64; 23] = [
     1.0, 1.05, 1.1, 1.15, 1.2, 1.25, 1.3, 1.35, 1.4, 1.45, 1.5, 1.55, 1.6, 1.65, 1.7, 1.75, 1.8,
     1.85, 1.9, 1.95, 2.0, 2.5, 3.0,
 ];
 
-/// The constant grips: 0.5 N to `N_max` (20 N) in steps of 0.5 N.
+/// The constant grips \[N\]: even steps up to `N_max`.
 pub const CONSTANT_GRID_N: [f64; 40] = [
     0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0, 6.5, 7.0, 7.5, 8.0, 8.5, 9.0, 9.5,
     10.0, 10.5, 11.0, 11.5, 12.0, 12.5, 13.0, 13.5, 14.0, 14.5, 15.0, 15.5, 16.0, 16.5, 17.0, 17.5,

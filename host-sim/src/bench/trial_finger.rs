@@ -2,21 +2,8 @@
 //! stream, and the scene's `[finger]` table that describes it to the simulator (never to
 //! a controller: what the controllers believe comes from [`super::lab`]).
 //!
-//! | plant | parameter | range (uniform unless said) |
-//! | --- | --- | --- |
-//! | `brush` | shape | hemicylinder or hemisphere, one in two |
-//! | | radius `R` | 6–15 mm |
-//! | | soft layer `h` | 0.2–0.4 `R` |
-//! | | Young's modulus | log-uniform 0.1–2 MPa (soft silicone to stiff rubber) |
-//! | | stiffening exponent `n` | 1–2 |
-//! | | static μ | 0.5–1.2; kinetic 0.75–0.95 of it |
-//! | | height of the load above the contact | 0.3–1 `R` |
-//! | | half-length `l` (hemicylinder) | 5–15 mm |
-//! | `fls` | shape | hemicylinder or hemisphere, one in two |
-//! | | `k` | 1.5–4 |
-//! | | μ | 0.5–1.2 |
-//! | | `a = c·N^γ` | `γ` 0.25–0.5, `a(1 N)` 1.5–3.5 mm |
-//! | | half-length `l` (hemicylinder) | 5–15 mm |
+//! The plants and the ranges of their parameters are tabled in docs/bench-fingers.md,
+//! "The plant: the brush finger by default".
 //!
 //! A brush finger whose contact at `N_max` would outgrow its meshed patch (too soft for
 //! its layer) is drawn again from the same stream, at most [`MAX_DRAWS`] times: the bench's

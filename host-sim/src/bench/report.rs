@@ -13,7 +13,8 @@ use std::path::Path;
 /// hand's limit ([`AT_LIMIT_FRACTION`](super::stats::AT_LIMIT_FRACTION); `-` without a
 /// `constant` sweep), the holdable drops that were turns rather than slides
 /// ([`lost_by_turning`](super::stats::lost_by_turning)), the drop rate with its Wilson
-/// interval [%] ([`wilson95`]), force over oracle [-], mean force \[N\], mean slip \[mm\].
+/// interval [%] ([`wilson95`](super::stats::wilson95)), force over oracle [-], mean force
+/// \[N\], mean slip \[mm\].
 pub fn family_table(family: &str, rows: &[Row]) -> String {
     let mut s = String::new();
     let (trials, holdable) = rows.first().map_or((0, 0), |r| (r.trials, r.holdable));
@@ -184,8 +185,9 @@ pub const FORCE_MARGIN: f64 = 0.98;
 /// Baseline settings that drop more than this are not compared.
 pub const DOMINANCE_MAX_DROP_RATE: f64 = 0.05;
 
-/// Whether `a` beats `b`: a drop rate whose Wilson upper bound ([`wilson95`]) is no
-/// higher, and force over the oracle at most [`FORCE_MARGIN`] of `b`'s.
+/// Whether `a` beats `b`: a drop rate whose Wilson upper bound
+/// ([`wilson95`](super::stats::wilson95)) is no higher, and force over the oracle at most
+/// [`FORCE_MARGIN`] of `b`'s.
 pub fn beats(a: &Row, b: &Row) -> bool {
     a.drop_rate_ci95[1] <= b.drop_rate_ci95[1]
         && a.force_over_oracle <= FORCE_MARGIN * b.force_over_oracle

@@ -13,7 +13,7 @@ pub const SCENE_CAP_BYTES: u64 = 1 << 20;
 /// Largest `--finger` file \[bytes\] (a scene or a `[finger]` table).
 pub const FINGER_CAP_BYTES: u64 = 1 << 20;
 /// Largest table blob \[bytes\] (a blob holds at most 12 × 33 f32 rows and a header: under
-/// 2 KiB).
+/// 2 KiB; `tests/tables_export.rs::the_largest_configuration_fits_blob_max_len`).
 pub const BLOB_CAP_BYTES: u64 = 1 << 20;
 /// Largest firmware ELF \[bytes\] (the debug build with symbols is under 1 MiB).
 pub const ELF_CAP_BYTES: u64 = 64 << 20;

@@ -25,14 +25,11 @@
 //! gross-slip onset of a combined load changes by 2.2e-5 from 24 to 48 elements; the
 //! motion is first order in the sub-step (`tests/brush_plant.rs` prints the figures).
 //!
-//! **Cost** per 1 ms tick in `brush_lift_hold` (24×24 elements; one pressure solve, warm,
-//! and one sub-step at its forces): 8.2–8.6 µs on one core of the 2-core development VM
-//! (three runs, load average 5 from other builds), the run's metric
-//! `brush_step_per_tick_s`, measured by
-//! `cargo run --release -p host-sim -- simulate host-sim/scenes/brush_lift_hold.toml`.
-//! Each bristle pass is one sweep over the 576 elements; the pressure solve 1–4 sweeps.
-//! The whole run (softgrip's controller included) ran at 15.6× real time pinned to one
-//! core (`taskset -c 1`), against 16.3× for `lift_hold` on the limit surface.
+//! **Cost** per tick (one pressure solve, warm, and one sub-step at its forces): the run's
+//! metric `brush_step_per_tick_s`, which
+//! `cargo run --release -p host-sim -- simulate host-sim/scenes/brush_lift_hold.toml`
+//! reports. Each bristle pass is one sweep over the patch's elements; the pressure solve
+//! 1–4 sweeps.
 
 pub mod bristles;
 pub mod contact;

@@ -8,7 +8,9 @@
 //! Integration: semi-implicit (symplectic) Euler, with the tick split into `n` sub-steps
 //! so that each is at most `0.2/ω` for the stiffest mode (`ω² = 2·k/m` and `2·k_θ/I` with
 //! the loaded bristles' stiffness of the previous step), at most [`MAX_SUBSTEPS`]. It
-//! neither creates energy (symplectic, with `ω·dt ≤ 0.2`) nor needs any iteration.
+//! neither creates energy (symplectic, with `ω·dt ≤ 0.2`) nor needs any iteration
+//! (`host-sim/tests/brush_plant.rs::a_closed_stick_slip_cycle_dissipates_energy`,
+//! `host-sim/tests/brush_plant.rs::object_motion_converges_as_the_tick_shrinks`).
 //!
 //! Accuracy: first order in the sub-step (`tests/brush_plant.rs` measures the motion's
 //! convergence as the tick shrinks). Cost: one bristle pass per sub-step.

@@ -20,13 +20,14 @@ pub enum BrushShape {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BrushSettings {
-    /// Radius `R` of the finger's rigid core plus layer \[m\], in (0, 1]; default 0.01.
+    /// Radius `R` of the finger's rigid core plus layer \[m\], in (0, 1]; default in `Default`.
     pub radius_m: f64,
-    /// Thickness `h` of the soft layer \[m\], in (0, R]; default 0.003.
+    /// Thickness `h` of the soft layer \[m\], in (0, R]; default in `Default`.
     pub layer_thickness_m: f64,
     /// Stiffening exponent `n` of the foundation `p = K·s^n`, in [1, 4]; default 1.
     pub stiffening_exponent: f64,
-    /// Kinetic friction coefficient `μ_k` [-], in (0, μ_s]; default `0.85·μ_s`.
+    /// Kinetic friction coefficient `μ_k` [-], in (0, μ_s]; default a fixed share of `μ_s`
+    /// ([`BrushParams::from_settings`]).
     pub mu_kinetic: Option<f64>,
     /// Linear gradient of both friction coefficients across the axis [1/m]:
     /// `μ(y) = μ·max(0, 1 + g·y)`, in [-1e4, 1e4]; default 0.
@@ -39,7 +40,7 @@ pub struct BrushSettings {
     /// Half-extent of the meshed patch across the axis \[m\], in (0, R]; default the
     /// contact half-width at indentation `h/2`, `sqrt(R·h − h²/4)`.
     pub mesh_half_width_m: Option<f64>,
-    /// Damping ratio of the stuck bristles with the object, in [0, 2]; default 0.3.
+    /// Damping ratio of the stuck bristles with the object, in [0, 2]; default in `Default`.
     pub damping_ratio: f64,
 }
 

@@ -28,7 +28,7 @@ use std::sync::Mutex;
 
 /// Most controllers the store keeps, the oldest dropped first: `simulate` precomputes every
 /// scene's before the first run, and `--all` over the shipped scenes in both modes keeps
-/// 16 (a controller is about 3.3 KB).
+/// 16.
 pub const CAPACITY: usize = 64;
 
 /// The kept controllers, each a `Controller<f32, M>` of some math backend `M`.

@@ -1,11 +1,11 @@
 //! A value as a Rust expression, through its serde serialization: so the tables export
 //! writes `ControllerConfig` from its definition, not from a hand-kept copy of its fields.
 //!
-//! Floats are written as exact bit patterns (`f64::from_bits(0x…)`), integers in decimal,
-//! `Option`s as `None`/`Some(…)`, enums and structs under `softgrip::controller::`. An
-//! enum variant's Rust name is its serde name with the first letter upper-cased (the
-//! crate's enums spell a one-word variant `Rect` as `rect` or `Rect`; a test checks
-//! every variant of the configuration's enums).
+//! Floats are written as exact bit patterns (`f64::from_bits` of a hex literal), integers
+//! in decimal, `Option`s as `None`/`Some(…)`, enums and structs under
+//! `softgrip::controller::`. An enum variant's Rust name is its serde name with the first
+//! letter upper-cased (the crate's enums spell a one-word variant `Rect` as `rect` or
+//! `Rect`; a test checks every variant of the configuration's enums).
 
 use serde::ser::{self, Impossible, Serialize, SerializeStruct};
 use std::fmt;

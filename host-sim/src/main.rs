@@ -40,6 +40,8 @@ enum Command {
     Accuracy(accuracy_cmd::AccuracyArgs),
     /// Lab experiments on a finger: the CSVs (and plots) a lab would record.
     Experiment(experiment_cmd::ExperimentArgs),
+    // The intervals:
+    // host-sim/tests/calibrate_cli.rs::json_has_every_parameter_with_value_interval_and_identification.
     /// Fit the finger's parameters to indentation and slip-onset CSVs, with 95 % intervals.
     Calibrate(calibrate_cmd::CalibrateArgs),
 }

@@ -98,7 +98,8 @@ pub struct RepresentationRow {
 }
 
 /// The probes of [`representation_rows`]: the rectangle at both ends of its aspect range,
-/// at `l/a = 1` and `2.6` (where the ellipse gap is largest), and the disc.
+/// at `l/a = 1` and `2.6` (aspects whose ellipse gap docs/decisions/conservative-capacity.md
+/// records), and the disc.
 pub fn representation_probes(rect: &ExactSurface) -> Vec<(String, Option<f64>)> {
     let (lo, hi) = aspect_range(rect);
     vec![

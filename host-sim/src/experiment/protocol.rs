@@ -32,7 +32,7 @@ pub enum Protocol {
 /// slip ramp, gets the additive part only).
 #[derive(Debug, Clone)]
 pub struct Noise {
-    /// Relative standard deviation (0.02 is 2 %).
+    /// Relative standard deviation [-] (a fraction, not per cent).
     pub relative: f64,
     /// Additive standard deviation of the force channels \[N\].
     pub force_n: f64,
@@ -136,8 +136,8 @@ pub fn onsets(
     rows
 }
 
-/// The default combined ratios `m_n/f_t` \[m\]: 1, 2.5 and 6 mm, which put the onsets of a
-/// 1–8 mm contact across the curved part of its surface.
+/// The default combined ratios `m_n/f_t` \[m\], which put the onsets of a 1–8 mm contact
+/// across the curved part of its surface.
 pub const DEFAULT_RATIOS_M: [f64; 3] = [1e-3, 2.5e-3, 6e-3];
 
 /// Everything `experiment all` records: indentation rows, and slip, torsion and combined

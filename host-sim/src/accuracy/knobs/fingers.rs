@@ -8,7 +8,7 @@ use super::*;
 pub struct Budget {
     /// Whether this is `--quick`.
     pub quick: bool,
-    /// Target forces `N*` of the load set (log-spaced in `[0.4, 15]` N).
+    /// Target forces `N*` of the load set, log-spaced \[N\].
     pub load_forces: usize,
     /// Directions of the load set, from pure force to pure torsion.
     pub load_directions: usize,
@@ -147,7 +147,7 @@ pub fn rect_config() -> ControllerConfig {
     ControllerConfig::default()
 }
 
-/// The disc: a hemispherical fingertip, `k = 2`, Hertzian growth `a = 2.5 mm·N^⅓`.
+/// The disc: a hemispherical fingertip, `k = 2`, Hertzian growth `a ∝ N^⅓`.
 pub fn disc_config() -> ControllerConfig {
     ControllerConfig {
         shape: FingerShape::Disc,
@@ -202,7 +202,7 @@ impl FingerRef {
                 let psi = std::f64::consts::FRAC_PI_2 * (j as f64 + 0.5) / b.grid_directions as f64;
                 let (f, m) = (0.5 * psi.cos(), 0.5 * pitch * psi.sin());
                 let u_exact = reference.utilisation_normalised(&model, f, m);
-                // The Eq. 10 ellipse's utilisation is 0.5 here by construction.
+                // The Eq. 10 ellipse's utilisation here is the probe's scale, by construction.
                 ellipse_gap = ellipse_gap.max((u_exact / 0.5 - 1.0).abs());
                 grid.push(GridPoint {
                     n,

@@ -4,7 +4,7 @@
 /// (timing noise on a shared machine is a few per cent).
 pub const TIME_TOLERANCE: f64 = 1.03;
 
-/// An error or a small number, as `2.8e-5`.
+/// An error or a small number, in scientific notation with one decimal.
 pub fn sci(x: f64) -> String {
     if x == 0.0 {
         "0".into()
@@ -36,7 +36,7 @@ pub(super) fn pct(x: f64) -> String {
     }
 }
 
-/// A relative amount: per cent when at least 0.1 %, else scientific.
+/// A relative amount: per cent from `1e-3` up, else scientific.
 pub(super) fn share(x: f64) -> String {
     if x >= 1e-3 {
         pct(x)

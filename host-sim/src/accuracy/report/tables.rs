@@ -78,8 +78,8 @@ pub(super) fn mode_rows(results: &Results, knob: Knob, table: bool) -> Vec<(Vari
         .collect()
 }
 
-/// The cheapest setting (by `key`) whose force error is within 10 % (or 1e-7) of the
-/// best setting's.
+/// The cheapest setting (by `key`) whose force error is close to the best setting's (the
+/// tolerance is in the filter below).
 pub(super) fn enough(
     rows: &[(Variant, Measured)],
     err: impl Fn(&Measured) -> f64,
@@ -255,8 +255,8 @@ pub(super) fn target_cost(results: &Results, v: &Variant) -> Option<super::targe
         .and_then(|t| t.costs.get(&v.normalised()).copied())
 }
 
-/// "the same", "12 % faster", "12 % slower": time `a` against time `b`, differences under
-/// 5 % counting as the same.
+/// "the same", "N % faster", "N % slower": time `a` against time `b`, small differences
+/// counting as the same.
 pub(super) fn compare_times(a: f64, b: f64) -> String {
     let r = a / b.max(1e-12);
     if (r - 1.0).abs() < 0.05 {

@@ -45,6 +45,7 @@ pub struct CalibrateArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
+    // host-sim/tests/calibrate_cli.rs::conservative_moves_each_parameter_toward_less_capacity.
     /// Report and write every parameter at the end of its 95 % interval that lowers the
     /// required-force rule's capacity (docs/calibration.md).
     #[arg(long, conflicts_with = "friction_contact")]

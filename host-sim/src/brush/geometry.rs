@@ -9,7 +9,7 @@
 //! Accuracy: each element's pressure is taken at its centre (the midpoint rule), so sums
 //! over the patch converge as the element side `Δ` shrinks, at about `O(Δ²)` (the
 //! contact's edge, where the penetration has a kink, can add an `O(Δ²)` term that
-//! oscillates with where the edge falls); `tests/brush_plant.rs` measures it. Cost:
+//! oscillates with where the edge falls); `host-sim/tests/brush_plant.rs` measures it. Cost:
 //! built once, `elements²` elements of five f64.
 
 use super::params::{BrushParams, BrushShape};

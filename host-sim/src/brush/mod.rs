@@ -23,7 +23,7 @@
 //! order (hemicylinder, `R = 20 mm`, 1 N: the half-width against the exact circle within
 //! 1.2e-3 at 24 elements per side and 3e-5 at 96, `N(δ)` within 9.5e-4 and 7.5e-5); the
 //! gross-slip onset of a combined load changes by 2.2e-5 from 24 to 48 elements; the
-//! motion is first order in the sub-step (`tests/brush_plant.rs` prints the figures).
+//! motion is first order in the sub-step (`host-sim/tests/brush_plant.rs` prints the figures).
 //!
 //! **Cost** per tick (one pressure solve, warm, and one sub-step at its forces): the run's
 //! metric `brush_step_per_tick_s`, which

@@ -12,7 +12,7 @@
 //! (`host-sim/tests/brush_plant.rs::a_closed_stick_slip_cycle_dissipates_energy`,
 //! `host-sim/tests/brush_plant.rs::object_motion_converges_as_the_tick_shrinks`).
 //!
-//! Accuracy: first order in the sub-step (`tests/brush_plant.rs` measures the motion's
+//! Accuracy: first order in the sub-step (`host-sim/tests/brush_plant.rs` measures the motion's
 //! convergence as the tick shrinks). Cost: one bristle pass per sub-step.
 
 use super::bristles::{BristleWrench, Pose};

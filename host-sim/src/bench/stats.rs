@@ -1,6 +1,6 @@
 //! The summary rows of a bench: per family, controller and knob value, the drops (with
-//! a Wilson 95 % interval, `host-sim/tests/bench.rs::the_wilson_interval_brackets_the_rate`), force over the oracle and slip, over the trials
-//! of one seed or of every seed pooled.
+//! a Wilson 95 % interval, `host-sim/tests/bench.rs::the_wilson_interval_brackets_the_rate`),
+//! force over the oracle and slip, over the trials of one seed or of every seed pooled.
 
 use super::families::N_MAX_N;
 use super::sweep::{settings, RunRow, Sweep, TrialResult};

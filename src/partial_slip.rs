@@ -35,7 +35,7 @@ pub struct Elasticity<T> {
 }
 
 impl<T: Real> Elasticity<T> {
-    /// Validates Young's modulus `E > 0` \[Pa\] and Poisson's ratio `ν ∈ [0, 0.5]`.
+    /// Validates Young's modulus `E > 0` \[Pa\] and Poisson's ratio `ν ∈ [0, 1/2]`.
     pub fn new(youngs_modulus_pa: f64, poisson: f64) -> Result<Self, ConfigError> {
         check(
             "E",

@@ -10,7 +10,8 @@ use crate::real::Real;
 
 /// Validated skew parameters: the largest skew `Δ/a ∈ [0, 1)`, the rate `α > 0` and the
 /// locus half-axis `h/a ≥ 0`. The paper's values are `Δ/a = 0.9`, `α = 1.1` and a circular
-/// locus, `h = Δ/2`.
+/// locus, `h = Δ/2`
+/// (tests/fls_properties.rs::paper_cases_are_monotone_convex_and_inside_the_ellipse).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SkewLaw<T> {
     delta_over_a: T,

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 
 /// Files (relative to the workspace root) not yet held to the rule; each one must still
 /// break it.
-const NOT_YET_CHECKED: [&str; 29] = [
+const NOT_YET_CHECKED: [&str; 14] = [
     "calibrate/src/calibration.rs",
     "calibrate/src/estimate.rs",
     "calibrate/src/finger_toml.rs",
@@ -31,27 +31,12 @@ const NOT_YET_CHECKED: [&str; 29] = [
     "calibrate/src/interval.rs",
     "calibrate/src/lib.rs",
     "calibrate/src/surface.rs",
-    "host-sim/src/accuracy/extras.rs",
-    "host-sim/src/accuracy/knobs/fingers.rs",
-    "host-sim/src/accuracy/report/format.rs",
-    "host-sim/src/accuracy/report/tables.rs",
     "host-sim/src/brush/foundation.rs",
-    "host-sim/src/brush/geometry.rs",
-    "host-sim/src/brush/mod.rs",
-    "host-sim/src/brush/object.rs",
     "host-sim/src/brush/onset.rs",
     "host-sim/src/cmd/bench.rs",
     "host-sim/src/cmd/calibrate/mod.rs",
     "host-sim/src/cmd/experiment/mod.rs",
-    "host-sim/src/experiment/protocol.rs",
     "host-sim/src/main.rs",
-    "src/device/pwm.rs",
-    "src/device/source.rs",
-    "src/fls/ellipse.rs",
-    "src/partial_slip.rs",
-    "src/pressure/gamma.rs",
-    "src/quadrature.rs",
-    "src/skew.rs",
 ];
 
 /// The directories scanned, relative to the workspace root.

@@ -8,7 +8,7 @@ use embedded_hal::pwm::SetDutyCycle;
 
 /// A force command as a PWM duty cycle: `duty = force / full_scale_n` of the channel's
 /// maximum, rounded to nearest and clamped to `[0, max]` (for example a
-/// current-controlled motor whose stall force is `full_scale_n` at 100 %).
+/// current-controlled motor whose stall force is `full_scale_n` at full duty).
 #[derive(Debug)]
 pub struct PwmForce<P> {
     pwm: P,

@@ -10,8 +10,8 @@ use core::marker::PhantomData;
 /// Where a device's controller comes from.
 ///
 /// The controller is built into a slot the device owns (`slot`), in place where the
-/// source can: a controller is about 3.3 KB, and every copy of it on its way into the
-/// device would be stack a microcontroller pays for. The device only ticks the slot after
+/// source can: a controller is kilobytes, and every copy of it on its way into the device
+/// would be stack a microcontroller pays for (docs/decisions/firmware-size-levers.md). The device only ticks the slot after
 /// an `Ok`; after an error the slot may hold anything. A source outside this crate can
 /// simply assign a controller it built: `*slot = Controller::new(cfg)?`.
 ///

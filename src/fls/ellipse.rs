@@ -17,7 +17,7 @@ pub struct EllipseFit<T> {
 
 impl<T: Real> EllipseFit<T> {
     /// Fits `p f̃² + q m̃² = 1` by linear least squares in `(p, q) = (1/A², 1/B²)` over the
-    /// points (a 2×2 normal system). Returns `None` when the points do not determine it.
+    /// points (a two-by-two normal system). Returns `None` when the points do not determine it.
     pub fn fit(points: &[FlsPoint<T>]) -> Option<Self> {
         let (mut s_ff, mut s_fm, mut s_mm, mut s_f, mut s_m) =
             (T::zero(), T::zero(), T::zero(), T::zero(), T::zero());
@@ -284,8 +284,8 @@ impl<T: Real> InscribedEllipse<T> {
 
     /// What the ellipse costs in force over the exact surface `points` (`(f̃, m̃)`),
     /// for loads in `directions` directions spread over the quadrant of `(x, y)` (evenly
-    /// in `tan(θ/2)`, which is within 22 % of even in angle): the ratio of the force it asks to the force the exact surface asks, less
-    /// one, as `(largest, mean)`, for a contact whose size does not change with the force
+    /// in `tan(θ/2)`, close to even in angle): the ratio of the force it asks to the force
+    /// the exact surface asks, less one, as `(largest, mean)`, for a contact whose size does not change with the force
     /// (`γ = 0`; with `γ > 0` the force ratio is smaller). The exact radius is that of
     /// the chord polygon through the samples.
     pub fn force_overhead(&self, points: &[FlsPoint<T>], directions: usize) -> (T, T) {

@@ -5,7 +5,8 @@
 //! The polynomial is the Taylor series of `1/Γ(1 + x)` at `x = 1/2`, cut after 20 terms,
 //! whose remainder is below `1e-18` on `[0, 1]` (`1/Γ` is entire, so the series
 //! converges everywhere). The coefficients are mpmath's at 50 digits, rounded to `f64`:
-//! `mpmath.taylor(lambda x: mpmath.rgamma(1 + x), 0.5, 19)`.
+//! `mpmath.taylor(lambda x: mpmath.rgamma(1 + x), 0.5, 19)`; the accuracy this buys is
+//! recorded in docs/decisions/firmware-size-levers.md.
 //!
 //! Accuracy (the tests below): within 4e-16 relative of `Γ(1 + y)` at mpmath's 40-digit
 //! values and at the closed forms (factorials, half-integers) on `[0, 4]`, the arguments
@@ -13,8 +14,9 @@
 //! `tgamma`'s own error, over 5e-16 at a test point, partly its rounding of `1 + y`). Each recurrence step adds up to half an ulp.
 //! Cost: 20 multiply-adds, a division and one multiplication per recurrence step, in f64.
 //!
-//! It replaces `libm`'s `tgamma` and `lgamma`, which are 8.1 KB of firmware flash and
-//! handle arguments the profile never has (negative, huge or near poles).
+//! It replaces `libm`'s `tgamma` and `lgamma`, which handle arguments the profile never
+//! has (negative, huge or near poles); the flash it saves is in
+//! docs/decisions/firmware-size-levers.md.
 
 /// Taylor coefficients of `1/Γ(1 + x)` at `x = 1/2`, lowest order first.
 const RGAMMA_1P_AT_HALF: [f64; 20] = [
@@ -49,8 +51,8 @@ fn rgamma_1p(x: f64) -> f64 {
         .fold(0.0, |acc, &c| acc * t + c)
 }
 
-/// `Γ(1 + y)` for `y ∈ [0, 170]`: `y! ` for integers, `+∞` above 170 (where `Γ` overflows
-/// `f64` near 171.6), NaN for NaN. Negative `y` is outside its domain (the profile's
+/// `Γ(1 + y)` for `y ∈ [0, 170]`: `y! ` for integers, `+∞` above 170 (`170!` is the last
+/// factorial an `f64` holds), NaN for NaN. Negative `y` is outside its domain (the profile's
 /// arguments are `j/k ≥ 0`) and gives `1/rgamma(1 + y)` of the polynomial, not `Γ`.
 pub(crate) fn gamma_1p(y: f64) -> f64 {
     if y.is_nan() {
@@ -110,7 +112,7 @@ mod tests {
     /// forms. `2.007` is near this function's largest error on `[0, 4]`, `2.328` near
     /// libm's `tgamma`'s (both found on a grid of 8 001 points against mpmath), where
     /// `tgamma` is more than 5e-16 off: the larger part of what `agrees_with_libm_tgamma`
-    /// allows.
+    /// allows. docs/decisions/firmware-size-levers.md rests on this test.
     #[test]
     #[allow(clippy::excessive_precision)] // mpmath's digits as it prints them
     fn agrees_with_mpmath() {
@@ -128,7 +130,7 @@ mod tests {
             let d = rel(gamma_1p(y), exact);
             assert!(d < 4e-16, "Γ(1 + {y}): relative error {d:e}");
         }
-        // `1 + 2.328` is exact, so this is libm's own error.
+        // `1 + y` is exact here, so this is libm's own error.
         let libm_err = rel(libm::tgamma(1.0 + 2.328), 2.762_709_026_311_557_548_5);
         assert!(libm_err > 5e-16, "libm's tgamma at 3.328: {libm_err:e}");
     }

@@ -1,6 +1,6 @@
 //! The calibration: which parameters the lab files can identify, the joint fit of those
 //! ([`crate::friction_fit`]), their 95 % intervals and the conservative values
-//! (docs/calibration.md).
+//! (docs/calibration.md; the intervals' choice: docs/decisions/calibration-fit.md).
 //!
 //! Rules, from the rows alone (before any fit):
 //!
@@ -10,12 +10,13 @@
 //!   mixed: `μ`), and `k` needs [`MIN_MOMENT_ONSETS`] with a moment (pure torsion or
 //!   mixed), else it is held at 2, the capacity-lowering end of its plausible range
 //!   `[2, ∞]` (a lower `k` shrinks the whole surface);
-//! - the skew (rectangle only, `α` held at 1.1): fitted when there are
+//! - the skew (rectangle only, `α` held at the paper's 1.1, docs/decisions/calibration-fit.md):
+//!   fitted when there are
 //!   [`MIN_MIXED_ONSETS`] mixed onsets; identified only if its interval excludes 0, else
 //!   held at 0, no skew: the skew only enlarges the surface, so none is conservative.
 //!
-//! Cost: [`calibrate`] builds a [`SurfaceGrid`] (about 70 ms, 0.9 s with the skew axis)
-//! and fits; [`calibrate_on`] reuses a grid and costs the fit alone (a few ms).
+//! Cost: [`calibrate`] builds a [`SurfaceGrid`] (most of its time, the more so with the
+//! skew axis) and fits; [`calibrate_on`] reuses a grid and costs the fit alone (a few ms).
 
 use crate::contact_fit::{fit_contact, ContactFit};
 use crate::error::CalibError;
@@ -96,7 +97,7 @@ pub struct Calibration {
     /// half-length to the contact friction sees: what it moved, and the joint fit's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_contact: Option<FrictionContact>,
-    /// The least indentation force [N] and the lower 95 % bound of `ln a` there
+    /// The least indentation force [N] and the lower bound of `ln a`'s interval there
     /// ([`Calibration::conservative`]'s contact law).
     #[serde(skip)]
     contact_floor: (f64, f64),
@@ -152,7 +153,7 @@ fn setup_error(setup: &Setup) -> Option<CalibError> {
 }
 
 /// The grid the data need: aspects `l/a(N)` over every force of both files (by the
-/// closed-form contact fit), widened by 1.5 each way; the skew axis when the rectangle
+/// closed-form contact fit), widened by a fixed factor each way; the skew axis when the rectangle
 /// has [`MIN_MIXED_ONSETS`] mixed onsets.
 pub fn grid_for(
     setup: &Setup,
@@ -427,7 +428,9 @@ fn estimates(
 
 impl Calibration {
     /// Every parameter at the end of its 95 % interval that lowers the capacity of the
-    /// required-force rule (docs/calibration.md): `μ`, `k` and the skew at their lower
+    /// required-force rule (docs/calibration.md;
+    /// host-sim/tests/calibrate_cli.rs::conservative_moves_each_parameter_toward_less_capacity):
+    /// `μ`, `k` and the skew at their lower
     /// bounds (each shrinks the limit surface), `γ` at its lower bound and `c` such that
     /// `a(N)` is at its lower 95 % bound at the least indentation force `N₁` (then `a(N)`
     /// is below the fitted law at every `N ≥ N₁`; a smaller contact has a smaller moment

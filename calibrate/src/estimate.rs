@@ -23,9 +23,9 @@ pub struct Estimate {
     ///
     /// [`Calibration::conservative`]: crate::Calibration::conservative
     pub value: f64,
-    /// The 95 % interval; `None` when the parameter was not estimated at all, or was
-    /// refitted without one (the friction contact's `c`); an unbounded end is `∞`
-    /// (`null` in JSON).
+    /// The 95 % interval (docs/decisions/calibration-fit.md); `None` when the parameter was
+    /// not estimated at all, or was refitted without one (the friction contact's `c`); an
+    /// unbounded end is `∞` (`null` in JSON).
     pub ci95: Option<[f64; 2]>,
     /// Whether the data identify it.
     pub identified: bool,
@@ -35,7 +35,7 @@ pub struct Estimate {
 }
 
 impl Estimate {
-    /// An identified estimate with its 95 % interval `ci`.
+    /// An identified estimate with its interval `ci`.
     pub(crate) fn fitted(value: f64, ci: (f64, f64)) -> Self {
         Self {
             value,

@@ -2,8 +2,8 @@
 //! half_length_m) and, when the skew is nonzero, the scene's skew as it spells it:
 //! `effects = ["skewed_pressure"]` and `[effect.skewed_pressure]` (delta_over_a, alpha,
 //! locus_over_a). A scene includes it by copying these lines; `host-sim tables --finger`
-//! and `host-sim experiment --finger` read the file as it is. Each value's 95 % interval,
-//! or why it was held, is a comment on its line.
+//! and `host-sim experiment --finger` read the file as it is. Each value's interval, or
+//! why it was held, is a comment on its line.
 
 use crate::calibration::Calibration;
 use crate::estimate::{Estimate, Refit};

@@ -22,7 +22,7 @@
 //! fit's ([`Calibration::joint`]).
 //!
 //! Cost: a surface grid over the refit's reach ([`grid_for_refit`]) and 120 bisections
-//! of a mean over the torsion onsets: about 0.2 s (docs/calibration.md).
+//! of a mean over the torsion onsets (the time it adds: docs/calibration.md).
 
 use crate::calibration::Calibration;
 use crate::error::CalibError;
@@ -116,7 +116,7 @@ pub fn refit(
 
 /// A grid that spans every aspect the refit can reach: `l/a(N)` at the onsets' forces
 /// under `cal`'s contact law, widened by the scale's reach and the half-length's, and
-/// by 1.5 each way; [`NODES_PER_DECADE`] nodes a decade. No skew axis (a pure torsion
+/// by a fixed factor each way; [`NODES_PER_DECADE`] nodes a decade. No skew axis (a pure torsion
 /// has no skew).
 pub fn grid_for_refit(cal: &Calibration, slip: &[SlipOnset]) -> Result<SurfaceGrid, CalibError> {
     let shape = cal.finger_shape();
@@ -151,7 +151,7 @@ fn refuse_conservative(cal: &Calibration) -> Result<(), CalibError> {
 
 impl Calibration {
     /// This (joint-fit) calibration with the contact friction sees: `μ` from the slip
-    /// test's pure-force onsets (its 95 % interval a t interval of their `ln(f_t/N)`),
+    /// test's pure-force onsets (its interval a t interval of their `ln(f_t/N)`),
     /// and `c`, or on a long hemicylinder the half-length, refitted to the torsion
     /// onsets ([`refit`]) on a grid over the refit's reach ([`grid_for_refit`]). `k`, `γ`
     /// and the skew stay the joint fit's. Refused with fewer than [`MIN_FORCE_ONSETS`]

@@ -10,9 +10,10 @@
 //! Each file's residuals are divided by that file's residual scale `σ` (estimated from the
 //! fit, `n − p` degrees of freedom), so the two files weigh as their noise says; the
 //! covariance of the estimate is `(JᵀJ)⁻¹` of the weighted residuals. Parameters: `ln c`,
-//! `γ ∈ [0, ½]`, `ln μ`, `κ = 1/k ∈ [0, 1]` and `s = (Δ/a)² ∈ [0, 0.81]` (the surface moves
-//! about linearly in `s`, and not at all to first order in `Δ/a` at 0). Cost: two
-//! Levenberg–Marquardt solves from three starts in `κ`; about 1–3 ms for 60 rows.
+//! `γ ∈ [0, ½]`, `ln μ`, `κ = 1/k ∈ [0, 1]` and `s = (Δ/a)² ∈ [0, MAX_SKEW²]` (the surface
+//! moves about linearly in `s`, and not at all to first order in `Δ/a` at 0:
+//! docs/decisions/calibration-fit.md). Cost: two Levenberg–Marquardt solves from three
+//! starts in `κ`; about 1–3 ms for 60 rows.
 
 use crate::contact_fit::ContactFit;
 use crate::interval::invert;
@@ -116,7 +117,7 @@ fn params(plan: &FitPlan, kappa: f64) -> Vec<Param> {
         .collect()
 }
 
-/// The best of three starts in `κ` (0.1, 0.5, 0.9; one if `κ` is held) at weights `sig`.
+/// The best of three starts spread over `κ`'s range (one if `κ` is held) at weights `sig`.
 fn solve_weighted(
     grid: &SurfaceGrid,
     plan: &FitPlan,

@@ -1,5 +1,6 @@
 //! 95 % intervals: Student's t quantile and the Wald interval of a least-squares
-//! estimate, `θ̂ ± t_{0.975, df}·se`, with the small dense algebra they need.
+//! estimate, `θ̂ ± t_{0.975, df}·se`, with the small dense algebra they need (why Wald:
+//! docs/decisions/calibration-fit.md).
 //!
 //! The fits are nonlinear least squares on log-scale residuals; their covariance is
 //! `σ²(JᵀJ)⁻¹` at the optimum (Gauss–Newton), each file's residuals weighted by its own
@@ -7,7 +8,8 @@
 
 /// `t_{0.975, df}`: the two-sided 95 % quantile of Student's t with `df` degrees of
 /// freedom. Tabulated (4 digits) for `df ≤ 6`, else the Cornish–Fisher expansion
-/// (Abramowitz & Stegun 26.7.5, four terms), within 6e-4 for `df ≥ 7`.
+/// (Abramowitz & Stegun 26.7.5, four terms), within 6e-4 for `df ≥ 7`. The 95 % level:
+/// docs/decisions/calibration-fit.md.
 pub fn t975(df: usize) -> f64 {
     const EXACT: [f64; 7] = [f64::INFINITY, 12.706, 4.303, 3.182, 2.776, 2.571, 2.447];
     if let Some(&t) = EXACT.get(df) {
@@ -93,7 +95,7 @@ mod tests {
 
     #[test]
     fn t_quantiles() {
-        // Tables: t_{0.975}(5) = 2.5706, (10) = 2.2281, (30) = 2.0423, (100) = 1.9840.
+        // The quantiles below are printed t tables'.
         for (df, t) in [
             (5, 2.5706),
             (7, 2.3646),

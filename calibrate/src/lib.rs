@@ -7,7 +7,8 @@
 //! - [`contact_fit`]: `c` and `γ` of `a = c·N^γ` in closed form (log-log least squares);
 //! - [`surface`]: the exact limit surface tabulated over `1/k`, `l/a` and the skew;
 //! - [`friction_fit`]: the joint fit of `c`, `γ`, `μ`, `k` and the skew to both files;
-//! - [`calibration`]: identifiability, 95 % intervals, conservative values: [`calibrate`];
+//! - [`calibration`]: identifiability, 95 % intervals (docs/decisions/calibration-fit.md),
+//!   conservative values: [`calibrate`];
 //! - [`friction_contact`]: optionally after it, `μ` from the slip test and the contact
 //!   scale (or a long hemicylinder's half-length) refitted to the torsion onsets;
 //! - [`estimate`]: the plain data both make ([`Setup`], [`Estimate`], the refit's record);
@@ -15,13 +16,15 @@
 //! - [`finger_toml`]: the finger TOML and the text report;
 //! - [`error`]: the errors, [`CalibError`].
 //!
-//! Accuracy: exact data give the exact `c` and `γ` (to rounding), `μ` within 1e-4 and `k`
-//! within 1 % (the tabulated surface's interpolation). Cost: [`calibrate`] about 0.1 s
-//! (1 s when the skew is fitted), most of it tabulating the surface; [`calibrate_on`] with
-//! a prebuilt grid a few milliseconds.
+//! Accuracy: exact data give the exact `c` and `γ` (to rounding), `μ` within 2e-4 and `k`
+//! within 2 % (the tabulated surface's interpolation;
+//! calibrate/tests/exact_fit.rs::exact_data_give_the_exact_parameters). Cost: most of
+//! [`calibrate`]'s time is tabulating the surface; [`calibrate_on`] with a prebuilt grid a
+//! few milliseconds.
 
 #![forbid(unsafe_code)]
-// `!(x > 0.0)` is how the crate rejects NaN with the bad values, as the core does.
+// A negated comparison (`!(x > lo)`) is how the crate rejects NaN with the bad values, as
+// the core does.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod calibration;

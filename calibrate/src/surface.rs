@@ -2,7 +2,8 @@
 //! (0 is uniform pressure, 1 is `k = 1`), the aspect `l/a` (the rectangle; the disc has one
 //! surface) and, for the rectangle, the skew's `Δ/a` at a fixed `α` (the locus changes
 //! nothing on the rectangle, docs/model.md), with nodes evenly in `(Δ/a)²`, in which the
-//! surface moves about linearly (by 1.8 % at most at `Δ/a = 0.9`, `k = 2`, `l = a`).
+//! surface moves about linearly (by 1.8 % at most at `Δ/a = 0.9`, `k = 2`, `l = a`:
+//! docs/decisions/calibration-fit.md).
 //!
 //! Each node holds the core's sweep ([`FlsTable`], [`SAMPLES`] centres of rotation: chords
 //! within about 6e-5 of the surface). A lookup interpolates multilinearly between the
@@ -10,8 +11,8 @@
 //! `ln(pitch)`, the radius along the load's ray in coordinates `(f̃, m̃/pitch)`. Accuracy
 //! against the exact surface: about 1e-4 relative (the fit's data have percent noise).
 //! Cost: building is one sweep per node, `KAPPAS × aspects × skews × (SAMPLES + 1)`
-//! quadratures (about 70 ms for the symmetric rectangle at 16 aspects, 0.8 s more for the
-//! skewed one); a lookup is at most 8 table lookups.
+//! quadratures (the skew axis multiplies them by [`SKEWS`]); a lookup is at most 8 table
+//! lookups.
 
 use crate::error::CalibError;
 use softgrip::controller::FingerShape;
@@ -223,7 +224,8 @@ mod tests {
     #[test]
     fn pitch_matches_the_papers_values() {
         let g = SurfaceGrid::build(FingerShape::Rect, 0.5, 2.0, 9, false).unwrap();
-        // docs/model.md: l = a, k = 2: 0.7114; k = 4: 0.7442; uniform 0.76520.
+        // The core's pitches at l = a (tests/fls_reference.rs): k = 2: 0.7114; k = 4: 0.7442;
+        // uniform 0.76520.
         assert!((g.pitch(0.5, 1.0) - 0.7114).abs() < 2e-4);
         assert!((g.pitch(0.25, 1.0) - 0.7442).abs() < 2e-4);
         assert!((g.pitch(0.0, 1.0) - 0.765_195_7).abs() < 1e-4);

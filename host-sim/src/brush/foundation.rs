@@ -5,9 +5,9 @@
 //!
 //! [`Foundation::solve`] finds `(δ, β)` such that `Σ p·A = N` and `Σ p·A·y = M_y`, the
 //! moment that balances the tangential force acting at the finger's height
-//! (`M_y = F_y·H`). A 2×2 Newton iteration (warm-started, step-halving on the residual,
-//! at most [`NEWTON_ITERATIONS`]) and, should it fail, nested bisection (outer on `β`,
-//! inner on `δ`, each [`BISECTIONS`] halvings): bounded, and it never panics (a NaN or
+//! (`M_y = F_y·H`). A Newton iteration in both unknowns (warm-started, step-halving on the
+//! residual, at most [`NEWTON_ITERATIONS`]) and, should it fail, nested bisection (outer on
+//! `β`, inner on `δ`, each [`BISECTIONS`] halvings): bounded, and it never panics (a NaN or
 //! infinite input gives the unloaded state). The moment is clamped so the pressure centre
 //! moves at most [`MAX_CENTRE_SHIFT`] of the untilted contact half-width.
 //!

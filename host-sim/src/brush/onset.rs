@@ -21,9 +21,9 @@
 //! `λ = 3·λ*` (no onset: `None`); a convex limit surface lies between the diamond
 //! `λ*` and the box `2·λ*`, so a contact that holds beyond that bound is not slipping.
 //!
-//! Accuracy: the onset is bracketed to `λ*/STEPS/2^REFINE`; the equilibria to [`TOLERANCE`] of
-//! the normal force. Cost: a few bristle passes per step, `STEPS·3 + REFINE` steps at most (about
-//! 10–30 ms at 24×24 elements).
+//! Accuracy: the onset is bracketed to `λ*/STEPS/2^REFINE`; the equilibria to
+//! [`TOLERANCE`] of the normal force. Cost: a few bristle passes per step,
+//! `STEPS·3 + REFINE` steps at most.
 
 use super::bristles::{BristleWrench, Pose};
 use super::contact::Contact;

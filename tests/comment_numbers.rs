@@ -22,9 +22,7 @@ use std::path::{Path, PathBuf};
 
 /// Files (relative to the workspace root) not yet held to the rule; each one must still
 /// break it.
-const NOT_YET_CHECKED: [&str; 6] = [
-    "host-sim/src/brush/foundation.rs",
-    "host-sim/src/brush/onset.rs",
+const NOT_YET_CHECKED: [&str; 4] = [
     "host-sim/src/cmd/bench.rs",
     "host-sim/src/cmd/calibrate/mod.rs",
     "host-sim/src/cmd/experiment/mod.rs",

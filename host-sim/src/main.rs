@@ -42,6 +42,7 @@ enum Command {
     Experiment(experiment_cmd::ExperimentArgs),
     // The intervals:
     // host-sim/tests/calibrate_cli.rs::json_has_every_parameter_with_value_interval_and_identification.
+    // host-sim/tests/calibrate_recovery.rs checks the intervals' coverage.
     /// Fit the finger's parameters to indentation and slip-onset CSVs, with 95 % intervals.
     Calibrate(calibrate_cmd::CalibrateArgs),
 }

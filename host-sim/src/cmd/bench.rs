@@ -61,6 +61,8 @@ pub struct BenchArgs {
     /// drawn per trial).
     #[arg(long, value_enum, default_value = "brush")]
     pub plant: PlantName,
+    // The shakes' and mu's ranges are checked (the twists' share is drawn in
+    // bench/families.rs) by host-sim/tests/help_figures.rs::the_hard_ranges_are_the_ones_bench_help_states
     /// The harder ranges: shakes of 6-15 Hz through 20-60 ms actuators, twists of
     /// 80-100 % of the capacity, a true mu 0.5-1.0 x the measured one.
     #[arg(long)]

@@ -50,24 +50,30 @@ pub struct FingerArgs {
     /// Patch shape.
     #[arg(long, value_parser = shape_parser())]
     pub shape: Option<FingerShape>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// Pressure exponent k >= 1 [default: 2].
     #[arg(long)]
     pub k: Option<f64>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// Friction coefficient [default: 0.8].
     #[arg(long)]
     pub mu: Option<f64>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// c in a = c·N^γ [m/N^γ] [default: 2.5e-3].
     #[arg(long)]
     pub c: Option<f64>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// γ in [0, 1/2] [default: 0.5].
     #[arg(long)]
     pub gamma: Option<f64>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// Half-length l of the rectangular patch in metres [default: 0.01].
     #[arg(long)]
     pub half_length: Option<f64>,
     /// Skew of the pressure peak Δ/a in [0, 1) [default: 0, none].
     #[arg(long)]
     pub skew: Option<f64>,
+    // host-sim/tests/help_figures.rs::experiments_stated_finger_defaults_are_its_defaults
     /// Rate α of the skew [default: 1.1].
     #[arg(long)]
     pub alpha: Option<f64>,
@@ -97,6 +103,7 @@ pub struct ExperimentArgs {
     /// Ratios m_n/f_t [m] of the combined ramps, comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = DEFAULT_RATIOS_M)]
     ratios: Vec<f64>,
+    // host-sim/tests/calibrate_recovery.rs records its rows with this relative noise.
     /// Relative sensor noise (standard deviation; 0.02 is 2 %) on every recorded value.
     #[arg(long, default_value_t = 0.0)]
     noise: f64,

@@ -25,7 +25,7 @@ pub struct QuadratureOrder {
 
 impl QuadratureOrder {
     /// The default: 28 nodes on each side (57 per interval). At this order the limit-surface
-    /// point is within 5e-11 of the converged integral in f64 over the tested domain (see
+    /// point is within 1e-9 of the converged integral in f64 over the tested domain (see
     /// `tests/fls_accuracy.rs`).
     pub const DEFAULT: Self = Self { nodes_per_side: 28 };
 

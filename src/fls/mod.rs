@@ -13,9 +13,9 @@
 //! - [`AspectGrid`] precomputes pitches and tables over a range of aspect ratios `l/a`
 //!   (module `aspect_grid`).
 //!
-//! Accuracy at [`QuadratureOrder::DEFAULT`] in f64: within 5e-11 of the converged integral
+//! Accuracy at [`QuadratureOrder::DEFAULT`] in f64: within 1e-9 of the converged integral
 //! for every `d` including 0, 1e-12, the patch edge and 1e12 (`tests/fls_accuracy.rs`), and
-//! within 6e-10 of an independent brute force (`tests/fls_brute_force.rs`). In f32 within
+//! within 1e-8 of an independent brute force (`tests/fls_brute_force.rs`). In f32 within
 //! 2e-6. Cost on the project's x86-64 VM (`cargo bench --bench fls`, medians): a symmetric
 //! rectangle point 1.9 µs, a skewed rectangle point 5.4 µs, a symmetric disc point 5.5 µs,
 //! a skewed disc point (a 2-D integral) 186 µs.

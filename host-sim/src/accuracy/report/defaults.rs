@@ -93,8 +93,9 @@ fn order(c: &Ctx) -> Option<String> {
         format!(
             "the numbers would allow order {} for the f32 firmware ({} less start-up in \
              table mode); 28 stays the default because the same core serves f64 on the \
-             host, where order 28 is what keeps a point within 5e-11 of the converged \
-             integral (docs/core.md), and because the start-up runs once",
+             host, where order 28 is what keeps a point within 1e-9 of the converged \
+             integral (tests/fls_accuracy.rs; docs/core.md), and because the start-up runs \
+             once",
             vo.order,
             pct(1.0 - mo.precompute_us / mt.precompute_us.max(1e-9))
         )

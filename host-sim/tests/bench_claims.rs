@@ -434,8 +434,8 @@ fn claims_defaults(b: &Bench) -> String {
     if !common.is_empty() {
         let _ = write!(
             s,
-            " At the margin of common practice, 1.3, the baselines' default before the rule \
-             chose them, a baseline beats softgrip's default in {}.",
+            " At the margin of common practice, 1.3 (each baseline's knob without the \
+             rule's choice), a baseline beats softgrip's default in {}.",
             common.join(", ")
         );
     }

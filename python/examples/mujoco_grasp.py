@@ -5,9 +5,12 @@ constant-force and Coulomb (``s·f_t/μ``) baselines.
 
     python python/examples/mujoco_grasp.py [--json] [--plot out.png] [--duration S]
     python python/examples/mujoco_grasp.py --sweep 1.0,1.2,1.35,1.5,1.75
+    python python/examples/mujoco_grasp.py --finger lab/finger.toml
 
 ``--sweep`` runs softgrip in both modes at each listed safety factor instead, and prints a
 Markdown table of their mean force over the least constant grip that holds the scene.
+``--finger FILE`` gives softgrip's controllers another finger (a finger TOML, e.g. the one
+``mujoco_rig.py`` calibrates on these fingertips); the scene stays as it is.
 
 Each fingertip is a soft hemisphere (condim 6, elliptic cone). Each step reads each
 fingertip's contact wrench with ``mj_contactForce``, takes the tangential force and the
@@ -62,6 +65,21 @@ DT = 1e-3  # [s]
 HELD_SLIP_M, HELD_ROT_DEG = 2e-3, 2.0
 ACTUATOR_LAG = 3e-3  # first-order lag of the finger actuator [s], the same for every run
 
+# MuJoCo's contact, shared with the calibration rig (mujoco_rig.py) so that the finger it
+# calibrates is this one: the solver's options, every geom's soft-contact parameters, the
+# box's friction and the fingertips' (MuJoCo takes the larger of two geoms' coefficients,
+# so a tip–box contact has the tip's).
+CONTACT_OPTIONS = f'timestep="{DT}" cone="elliptic" impratio="100" noslip_iterations="20"'
+GEOM_SOFTNESS = 'solref="0.004 1" solimp="0.95 0.99 0.001"'
+BOX_FRICTION = "0.1 0.00001 0.00001"
+TIP_MASS = 0.02  # [kg]
+
+
+def tip_friction(mu_t: float) -> str:
+    """A fingertip's MuJoCo friction: sliding μ, torsional ``mu_t`` [m], rolling."""
+    return f"{FINGER['mu']} {mu_t} 0.00001"
+
+
 # Phases [s]: close, lift, hold, shake, twist, hold.
 T_CLOSE, T_LIFT, T_HOLD1, T_SHAKE, T_TWIST, T_END = 0.3, 1.0, 1.4, 2.4, 3.4, 4.0
 LIFT_HEIGHT = 0.10  # [m]
@@ -96,15 +114,14 @@ def torsional_coefficient(n_star: float) -> float:
 def mjcf(mu_t: float) -> str:
     """The scene: floor, box, a gripper base on x/z slides and a hinge about the grip
     axis (position servos), two fingers on y slides (force actuators)."""
-    mu = FINGER["mu"]
     bx, by, bz = BOX_HALF
     gap = by + TIP_RADIUS + 0.004  # fingers start 4 mm off the box
     z0 = bz  # box centre height at rest
     return f"""
 <mujoco model="softgrip_grasp">
-  <option timestep="{DT}" cone="elliptic" impratio="100" noslip_iterations="20" gravity="0 0 -9.81"/>
+  <option {CONTACT_OPTIONS} gravity="0 0 -9.81"/>
   <default>
-    <geom solref="0.004 1" solimp="0.95 0.99 0.001"/>
+    <geom {GEOM_SOFTNESS}/>
   </default>
   <worldbody>
     <geom name="floor" type="plane" size="1 1 0.1" contype="1" conaffinity="1"
@@ -112,7 +129,7 @@ def mjcf(mu_t: float) -> str:
     <body name="box" pos="{GRASP_OFFSET} 0 {z0}">
       <freejoint/>
       <geom name="box" type="box" size="{bx} {by} {bz}" mass="{BOX_MASS}"
-            contype="1" conaffinity="1" condim="6" friction="0.1 0.00001 0.00001"
+            contype="1" conaffinity="1" condim="6" friction="{BOX_FRICTION}"
             rgba="0.8 0.5 0.2 1"/>
     </body>
     <body name="base" pos="0 0 {z0}">
@@ -125,16 +142,16 @@ def mjcf(mu_t: float) -> str:
         <joint name="yl" type="slide" axis="0 1 0" damping="5" range="-0.01 0.03"/>
         <geom type="capsule" fromto="0 0 0.005 0 0 0.05" size="0.004" mass="0.05"
               contype="0" conaffinity="0"/>
-        <geom name="tip_l" type="sphere" size="{TIP_RADIUS}" mass="0.02" condim="6"
-              contype="2" conaffinity="1" friction="{mu} {mu_t} 0.00001"
+        <geom name="tip_l" type="sphere" size="{TIP_RADIUS}" mass="{TIP_MASS}" condim="6"
+              contype="2" conaffinity="1" friction="{tip_friction(mu_t)}"
               rgba="0.2 0.6 0.9 1"/>
       </body>
       <body name="right" pos="0 {gap} 0">
         <joint name="yr" type="slide" axis="0 1 0" damping="5" range="-0.03 0.01"/>
         <geom type="capsule" fromto="0 0 0.005 0 0 0.05" size="0.004" mass="0.05"
               contype="0" conaffinity="0"/>
-        <geom name="tip_r" type="sphere" size="{TIP_RADIUS}" mass="0.02" condim="6"
-              contype="2" conaffinity="1" friction="{mu} {mu_t} 0.00001"
+        <geom name="tip_r" type="sphere" size="{TIP_RADIUS}" mass="{TIP_MASS}" condim="6"
+              contype="2" conaffinity="1" friction="{tip_friction(mu_t)}"
               rgba="0.2 0.6 0.9 1"/>
       </body>
     </body>
@@ -228,11 +245,12 @@ class Softgrip(Grip):
 
     name = "softgrip"
 
-    def __init__(self, **overrides):
+    def __init__(self, finger: Optional[dict] = None, **overrides):
         # The controller is told the actuator's lag, so it commands ahead of a rising load;
-        # its mode and safety factor are the library's defaults.
+        # its mode and safety factor are the library's defaults. `finger`: Controller
+        # keywords of another finger (softgrip.load_finger's), FINGER by default.
         cfg = dict(
-            FINGER,
+            FINGER if finger is None else finger,
             n_min_n=N_MIN,
             n_max_n=N_MAX,
             tick_period_s=DT,
@@ -365,8 +383,9 @@ def cone_vs_fls(mu_t: float, forces=(0.5, 1.0, 2.0, 5.0, 10.0, 20.0)) -> list[di
     return rows
 
 
-def baselines() -> list[Grip]:
-    return [Softgrip(), Coulomb()] + [Constant(f) for f in (4.0, 6.0, 8.0, 10.0, 12.0, 16.0)]
+def baselines(finger: Optional[dict] = None) -> list[Grip]:
+    constants = [Constant(f) for f in (4.0, 6.0, 8.0, 10.0, 12.0, 16.0)]
+    return [Softgrip(finger), Coulomb()] + constants
 
 
 def least_holding_constant(
@@ -395,7 +414,11 @@ def least_holding_constant(
 
 
 def safety_sweep(
-    safeties: list[float], mu_t: float, least_n: Optional[float], duration: float = T_END
+    safeties: list[float],
+    mu_t: float,
+    least_n: Optional[float],
+    duration: float = T_END,
+    finger: Optional[dict] = None,
 ) -> list[dict]:
     """softgrip in each mode at each safety factor: held, mean force and its ratio to the
     least holding constant grip (`None` when no constant of the grid holds)."""
@@ -403,7 +426,7 @@ def safety_sweep(
     for s in safeties:
         row = dict(safety=s)
         for mode in ("ellipse", "table"):
-            r = run(Softgrip(mode=mode, safety=s), mu_t, duration)
+            r = run(Softgrip(finger, mode=mode, safety=s), mu_t, duration)
             row[mode] = dict(
                 held=r.held,
                 mean_force_n=r.mean_force_n,
@@ -443,7 +466,13 @@ def main(argv: Optional[list[str]] = None) -> int:
         metavar="S1,S2,...",
         help="run softgrip in both modes at these safety factors and print a Markdown table",
     )
+    ap.add_argument(
+        "--finger",
+        metavar="TOML",
+        help="softgrip's finger from this finger TOML (the scene keeps FINGER)",
+    )
     args = ap.parse_args(argv)
+    finger = softgrip.load_finger(args.finger) if args.finger else None
 
     n_star = operating_force()
     mu_t = torsional_coefficient(n_star)
@@ -452,14 +481,16 @@ def main(argv: Optional[list[str]] = None) -> int:
         constants = [p for p in baselines() if isinstance(p, Constant)]
         coarse = [run(p, mu_t, args.duration) for p in constants]
         least_n = least_holding_constant(coarse, mu_t, args.duration)
-        rows = safety_sweep(safeties, mu_t, least_n, args.duration)
+        rows = safety_sweep(safeties, mu_t, least_n, args.duration, finger)
         if args.json:
             json.dump(dict(least_holding_constant_n=least_n, rows=rows), sys.stdout, indent=2)
             print()
         else:
             print_sweep(rows, least_n)
         return 0
-    results = [run(p, mu_t, args.duration, keep_trace=bool(args.plot)) for p in baselines()]
+    results = [
+        run(p, mu_t, args.duration, keep_trace=bool(args.plot)) for p in baselines(finger)
+    ]
     cone = cone_vs_fls(mu_t, sorted({0.5, 1.0, 2.0, 5.0, 10.0, 20.0, round(n_star, 3)}))
     soft = results[0]
     holding_constants = [
@@ -482,6 +513,11 @@ def main(argv: Optional[list[str]] = None) -> int:
     if args.json:
         out = dict(
             finger=FINGER,
+            # An infinite k (uniform pressure) is null, as calibrate's JSON writes it.
+            softgrip_finger={
+                key: None if isinstance(v, float) and math.isinf(v) else v
+                for key, v in (FINGER if finger is None else finger).items()
+            },
             safety=SAFETY,
             softgrip_config={k: softgrip.default_config()[k] for k in ("mode", "safety")},
             operating_force_n=n_star,
@@ -499,6 +535,8 @@ def main(argv: Optional[list[str]] = None) -> int:
             f"operating force N* = {n_star:.3f} N; MuJoCo torsional friction "
             f"mu_t = mu·a(N*)·pitch = {mu_t * 1e3:.4f} mm"
         )
+        if finger is not None:
+            print(f"softgrip's finger, from {args.finger}: {finger}")
         print()
         print(
             f"{'controller':<18} {'held':>5} {'slip mm':>8} {'rot deg':>8} "

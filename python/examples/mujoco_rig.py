@@ -1,0 +1,406 @@
+#!/usr/bin/env python3
+"""The lab protocols softgrip's calibration reads, run in MuJoCo on ``mujoco_grasp.py``'s
+fingertip pressed on a flat plate; then the fit, and the grasp on the fitted finger.
+
+    python python/examples/mujoco_rig.py all --out lab/           # indentation.csv, slip.csv
+    python python/examples/mujoco_rig.py all --out lab/ --calibrate --grasp
+
+The rig is the grasp's fingertip (the same sphere, mass, friction, soft-contact parameters
+and solver options: ``mujoco_grasp.CONTACT_OPTIONS`` and its neighbours) on a slide along
+the normal, pressed by a force actuator on a 200 g plate of the box's material. The plate
+slides in x and y and turns about the normal through the contact; gravity is off, so the
+normal force is the actuator's. Each measurement starts from rest and presses for
+``SETTLE_S``; then
+
+- ``indentation`` records the contact's normal force and the half-width of the overlap of
+  sphere and plate, ``sqrt(2·R·d − d²)`` at MuJoCo's penetration ``d``, at each of
+  ``--indentation-forces`` (one force, 4 N, by default, pressed three times: the
+  calibration reads at least three rows; MuJoCo repeats itself to the last digit).
+  MuJoCo has no contact patch: ``d`` is its soft constraint's give (``solref``,
+  ``solimp`` and the bodies' masses set it) and its friction never reads it. Its
+  torsional friction is a fixed length ``μ_t`` (``|m_n| ≤ μ_t·N``), a contact that does
+  not grow with the force, while the overlap grows as ``N^½``. With one force the
+  calibration holds ``γ`` at 0, MuJoCo's law, and ``--calibrate`` refits ``c`` to the
+  torsion onsets (``friction_contact``);
+- ``slip``, ``torsion`` and ``combined`` ramp a force on the plate's x slide, a moment on
+  its hinge, or both along ratios ``m_n/f_t`` [m], by ``RAMP_PER_S·N`` per second, until
+  gross slip, and record the contact's wrench (``mj_contactForce``) then. Gross slip is
+  the first step at which the contact's wrench and the applied load differ by
+  ``ONSET_SHORTFALL`` (0.5 %) of the load (force and moment on one scale, the moment over
+  the tip's radius), looked for from a load of ``ONSET_FROM·N`` on;
+- ``all``: ``indentation.csv``, and ``slip.csv`` with the onsets of the three ramps.
+
+The files have ``host-sim experiment``'s columns (docs/experiments.md); the forces and
+ratios are its defaults plus 16 N (the grasp grips at up to 20 N). Without noise a
+repeated ramp copies its row: one ramp per force and direction.
+
+``--calibrate`` fits them with ``softgrip.calibrate(..., shape="disc",
+friction_contact=True)`` into ``finger.toml`` and prints the fit against MuJoCo's
+configured friction and each onset's ``N_slip/N`` on the fitted finger; ``--grasp`` runs
+``mujoco_grasp.py``'s scene with softgrip on the fitted finger (and on the example's own,
+for comparison) and prints their mean force over the least constant grip that holds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import pathlib
+import sys
+from dataclasses import dataclass
+from typing import Optional
+
+import mujoco
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import mujoco_grasp as grasp  # noqa: E402  (the grasp's fingertip and scene)
+
+import softgrip  # noqa: E402
+
+FORCES = (0.5, 1.0, 2.0, 4.0, 8.0, 16.0)  # [N]
+INDENTATION_FORCES = (4.0,)  # [N]: one force, so the fit holds gamma at 0 (above)
+INDENTATION_ROWS = 3  # presses in all, spread over the forces: calibrate reads at least 3
+RATIOS = (1e-3, 2.5e-3, 6e-3)  # m_n/f_t of the combined ramps [m], host-sim's defaults
+TORSION_UNIT_NM = 1e-3  # a pure-torsion ramp's moment per unit of load, as host-sim's
+SETTLE_S = 0.2  # pressing before a measurement [s]
+RAMP_PER_S = 2.0  # the load s rises by 2·N per second (a force ramp: 2·N newtons/s)
+RAMP_MAX = 5.0  # a ramp that has not slipped by s = 5·N records nothing
+ONSET_FROM = 0.1  # the onset is looked for from s = 0.1·N on (the start's transient)
+ONSET_SHORTFALL = 0.005  # the contact and the applied load differ by 0.5 %: gross slip
+PLATE_MASS = 0.2  # [kg], the box's
+PLATE_HALF = (0.03, 0.03, 0.005)  # [m]
+N_MAX_PREDICT = 40.0  # the prediction's controller range [N], above every onset's force
+
+
+def rig_mjcf(mu_t: float) -> str:
+    """The rig: a plate on x/y slides and a hinge about the normal through the contact,
+    and the grasp's fingertip above it on a z slide pushed down by a motor."""
+    r = grasp.TIP_RADIUS
+    px, py, pz = PLATE_HALF
+    return f"""
+<mujoco model="softgrip_rig">
+  <option {grasp.CONTACT_OPTIONS} gravity="0 0 0"/>
+  <default>
+    <geom {grasp.GEOM_SOFTNESS}/>
+  </default>
+  <worldbody>
+    <body name="plate" pos="0 0 0">
+      <joint name="px" type="slide" axis="1 0 0"/>
+      <joint name="py" type="slide" axis="0 1 0"/>
+      <joint name="rz" type="hinge" axis="0 0 1"/>
+      <geom name="plate" type="box" size="{px} {py} {pz}" pos="0 0 {-pz}" mass="{PLATE_MASS}"
+            contype="1" conaffinity="1" condim="6" friction="{grasp.BOX_FRICTION}"/>
+    </body>
+    <body name="finger" pos="0 0 {r}">
+      <joint name="fz" type="slide" axis="0 0 1" damping="5"/>
+      <geom type="capsule" fromto="0 0 0.005 0 0 0.05" size="0.004" mass="0.05"
+            contype="0" conaffinity="0"/>
+      <geom name="tip" type="sphere" size="{r}" mass="{grasp.TIP_MASS}" condim="6"
+            contype="2" conaffinity="1" friction="{grasp.tip_friction(mu_t)}"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor name="press" joint="fz" gear="-1"/>
+    <motor name="push" joint="px"/>
+    <motor name="turn" joint="rz"/>
+  </actuator>
+</mujoco>
+"""
+
+
+@dataclass
+class Wrench:
+    """The tip–plate contact: normal force [N], |f_t| [N], |m_n| [N·m], penetration [m]."""
+
+    n: float = 0.0
+    ft: float = 0.0
+    mn: float = 0.0
+    depth: float = 0.0
+
+
+class Rig:
+    """The MuJoCo rig; every measurement starts from rest."""
+
+    def __init__(self, mu_t: Optional[float] = None):
+        self.mu_t = grasp.torsional_coefficient(grasp.operating_force()) if mu_t is None else mu_t
+        self.model = mujoco.MjModel.from_xml_string(rig_mjcf(self.mu_t))
+        self.data = mujoco.MjData(self.model)
+        geom = lambda n: mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_GEOM, n)  # noqa: E731
+        self.pair = {geom("tip"), geom("plate")}
+        self.steps = 0
+        self._f6 = np.zeros(6)
+
+    def wrench(self) -> Wrench:
+        m, d, f6 = self.model, self.data, self._f6
+        w = Wrench()
+        for i in range(d.ncon):
+            if {int(d.contact.geom1[i]), int(d.contact.geom2[i])} != self.pair:
+                continue
+            mujoco.mj_contactForce(m, d, i, f6)
+            # Contact frame: normal, two tangents; f6 = (N, t1, t2, m_n, r1, r2).
+            w.n += f6[0]
+            w.ft += math.hypot(f6[1], f6[2])
+            w.mn += abs(f6[3])
+            w.depth = max(w.depth, -float(d.contact.dist[i]))
+        return w
+
+    def step(self, press_n: float, push_n: float = 0.0, turn_nm: float = 0.0) -> Wrench:
+        self.data.ctrl[:] = [press_n, push_n, turn_nm]
+        mujoco.mj_step(self.model, self.data)
+        self.steps += 1
+        return self.wrench()
+
+    def press(self, normal_n: float) -> Wrench:
+        """From rest, presses with ``normal_n`` for ``SETTLE_S``; the contact then."""
+        mujoco.mj_resetData(self.model, self.data)
+        w = Wrench()
+        for _ in range(int(round(SETTLE_S / grasp.DT))):
+            w = self.step(normal_n)
+        return w
+
+    def indentation(self, normal_n: float) -> tuple[float, float]:
+        """(normal force [N], overlap half-width [m]) at rest under ``normal_n``."""
+        w = self.press(normal_n)
+        r, d = grasp.TIP_RADIUS, w.depth
+        return w.n, math.sqrt(max(2.0 * r * d - d * d, 0.0))
+
+    def slip_onset(self, normal_n: float, ft_unit: float, mn_unit: float) -> Optional[Wrench]:
+        """Ramps ``s·(ft_unit [N], mn_unit [N·m])`` on the plate, ``s`` rising at
+        ``RAMP_PER_S·normal_n`` per second, until the contact's wrench and the load differ by
+        ``ONSET_SHORTFALL`` of the load; the contact's wrench at that step, or ``None`` if
+        it has not slipped by ``s = RAMP_MAX·normal_n``."""
+        self.press(normal_n)
+        ds = RAMP_PER_S * normal_n * grasp.DT
+        # Force and moment on one scale: the moment as a force at the tip's radius.
+        arm = grasp.TIP_RADIUS
+        s = 0.0
+        while s < RAMP_MAX * normal_n:
+            s += ds
+            w = self.step(normal_n, s * ft_unit, s * mn_unit)
+            applied = np.array([s * ft_unit, s * mn_unit / arm])
+            carried = np.array([w.ft, w.mn / arm])
+            gap = np.linalg.norm(applied - carried)
+            if s > ONSET_FROM * normal_n and gap > ONSET_SHORTFALL * np.linalg.norm(applied):
+                return w
+        return None
+
+
+def experiment(
+    rig: Rig,
+    kind: str,
+    forces=FORCES,
+    ratios=RATIOS,
+    indentation_forces=INDENTATION_FORCES,
+) -> dict[str, list[tuple[float, ...]]]:
+    """The rows of ``kind`` (indentation, slip, torsion, combined or all), by file name
+    (``all``: indentation and slip)."""
+    out: dict[str, list] = {}
+    if kind in ("indentation", "all"):
+        presses = -(-INDENTATION_ROWS // max(len(indentation_forces), 1))
+        out["indentation"] = [
+            rig.indentation(n) for n in indentation_forces for _ in range(presses)
+        ]
+    dirs = {
+        "slip": [(1.0, 0.0)],
+        "torsion": [(0.0, TORSION_UNIT_NM)],
+        "combined": [(1.0, r) for r in ratios],
+    }
+    kinds = list(dirs) if kind == "all" else [kind] if kind in dirs else []
+    for k in kinds:
+        rows = out.setdefault("slip" if kind == "all" else k, [])
+        for n in forces:
+            for ft_u, mn_u in dirs[k]:
+                w = rig.slip_onset(n, ft_u, mn_u)
+                if w is None:
+                    continue
+                # A pure ramp's unloaded channel is recorded as 0, as host-sim's (MuJoCo's
+                # solver leaves it at rounding level), so the fit sees a pure onset.
+                rows.append((w.n, w.ft if ft_u else 0.0, w.mn if mn_u else 0.0))
+    return out
+
+
+INDENTATION_HEADER = "normal_force_n,half_width_m"
+SLIP_HEADER = "normal_force_n,tangential_force_n,torsional_moment_nm"
+
+
+def write_csvs(rows: dict[str, list], out: pathlib.Path) -> list[pathlib.Path]:
+    """Writes each file as ``host-sim experiment`` does: the header, then one row per
+    measurement in shortest round-trip numbers."""
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, table in rows.items():
+        header = INDENTATION_HEADER if name == "indentation" else SLIP_HEADER
+        path = out / f"{name}.csv"
+        lines = [header] + [",".join(repr(float(v)) for v in row) for row in table]
+        path.write_text("\n".join(lines) + "\n")
+        paths.append(path)
+    return paths
+
+
+def read_slip(path: pathlib.Path) -> list[tuple[float, float, float]]:
+    lines = path.read_text().splitlines()[1:]
+    return [tuple(float(x) for x in line.split(",")) for line in lines if line.strip()]
+
+
+def calibrate(out: pathlib.Path) -> dict:
+    """``softgrip.calibrate`` on the rig's files in ``out`` (a disc; μ from the pure-force
+    onsets and ``c`` refitted to the torsion onsets, ``friction_contact``); writes
+    ``out/finger.toml`` and returns the fit."""
+    fit = softgrip.calibrate(
+        out / "indentation.csv", out / "slip.csv", shape="disc", friction_contact=True
+    )
+    (out / "finger.toml").write_text(fit["finger_toml"])
+    return fit
+
+
+def torsional_friction(finger: dict) -> float:
+    """A finger's pure-torsion limit per newton, ``μ·a·pitch`` [m] (MuJoCo's ``μ_t`` when
+    ``γ = 0``), at 1 N."""
+    pitch = softgrip.fls(shape=finger["shape"], k=finger["k"], samples=16)["pitch"]
+    a = softgrip.half_width(finger["c_m_per_n_gamma"], finger["gamma"], 1.0)
+    return finger["mu"] * a * pitch
+
+
+def predicted_onsets(finger: dict, rows) -> list[dict]:
+    """Each measured onset's ``N_slip/N`` on ``finger``: the normal force at which the
+    finger's exact surface (table mode, safety 1) says that load slips, over the force it
+    slipped at in MuJoCo (1: predicted exactly; above 1: the finger slips first)."""
+    ctl = softgrip.Controller(**finger, mode="table", n_max_n=N_MAX_PREDICT)
+    out = []
+    for n, ft, mn in rows:
+        kind = "force" if mn == 0 else "torsion" if ft == 0 else "mixed"
+        n_slip = ctl.slip_force(ft, mn)
+        out.append(dict(kind=kind, normal_force_n=n, over=n_slip / n if n_slip else None))
+    return out
+
+
+def grasp_ratios(fingers: dict[str, Optional[dict]], **config) -> dict:
+    """``mujoco_grasp``'s scene: the least constant grip that holds (0.5 N grid) and, for
+    each named finger (``None``: the example's own), softgrip's run at ``config`` (its
+    defaults by default) and mean force over that grip."""
+    mu_t = grasp.torsional_coefficient(grasp.operating_force())
+    coarse = [grasp.run(grasp.Constant(f), mu_t) for f in (8.0, 10.0, 12.0, 16.0)]
+    least = grasp.least_holding_constant(coarse, mu_t)
+    out = dict(least_holding_constant_n=least, config=config, runs={})
+    for name, finger in fingers.items():
+        r = grasp.run(grasp.Softgrip(finger, **config), mu_t)
+        out["runs"][name] = dict(
+            held=r.held,
+            mean_force_n=r.mean_force_n,
+            over_least=r.mean_force_n / least if least else None,
+            rotation_deg=r.rotation_deg,
+            slip_mm=r.slip_mm,
+        )
+    return out
+
+
+def summary(fit: dict, rows, mu_t: float) -> dict:
+    """The fit against MuJoCo's configured friction, and the onsets' prediction by kind."""
+    finger = fit["controller"]
+    pred = predicted_onsets(finger, rows)
+    by_kind = {}
+    for kind in ("force", "torsion", "mixed"):
+        vals = [p["over"] for p in pred if p["kind"] == kind]
+        if vals:
+            by_kind[kind] = dict(count=len(vals), min=min(vals), max=max(vals))
+    return dict(
+        mu=dict(fitted=finger["mu"], mujoco=grasp.FINGER["mu"]),
+        torsional_friction_m=dict(fitted=torsional_friction(finger), mujoco=mu_t),
+        k=finger["k"],
+        k_ci95=fit["k"]["ci95"],
+        c_m=finger["c_m_per_n_gamma"],
+        gamma=finger["gamma"],
+        joint_fit=fit.get("friction_contact"),
+        onsets_n_slip_over_n=by_kind,
+    )
+
+
+def main(argv: Optional[list[str]] = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("kind", choices=["indentation", "slip", "torsion", "combined", "all"])
+    ap.add_argument("--out", required=True, type=pathlib.Path, help="output directory")
+    ap.add_argument("--forces", default=",".join(f"{f:g}" for f in FORCES), help="[N]")
+    ap.add_argument("--ratios", default=",".join(f"{r:g}" for r in RATIOS), help="[m]")
+    ap.add_argument(
+        "--indentation-forces", default=",".join(f"{f:g}" for f in INDENTATION_FORCES),
+        help="[N]; more than one makes the fit take gamma from the overlap",
+    )
+    ap.add_argument("--calibrate", action="store_true", help="fit finger.toml (needs all)")
+    ap.add_argument("--grasp", action="store_true", help="run the grasp on it (needs --calibrate)")
+    ap.add_argument(
+        "--config", action="append", default=[], metavar="KEY=VALUE",
+        help="a softgrip controller setting for --grasp (repeatable), e.g. safety=1.0",
+    )
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    args = ap.parse_args(argv)
+    floats = lambda text: [float(x) for x in text.split(",") if x.strip()]  # noqa: E731
+    if (args.calibrate or args.grasp) and args.kind != "all":
+        ap.error("--calibrate and --grasp need the kind all")
+    if args.grasp and not args.calibrate:
+        ap.error("--grasp needs --calibrate")
+    config = {}
+    for item in args.config:
+        key, _, value = item.partition("=")
+        try:
+            config[key.strip()] = float(value)
+        except ValueError:
+            config[key.strip()] = value.strip()  # mode=table
+    rig = Rig()
+    rows = experiment(
+        rig, args.kind, floats(args.forces), floats(args.ratios),
+        floats(args.indentation_forces),
+    )
+    report: dict = dict(files=[str(p) for p in write_csvs(rows, args.out)], mujoco_steps=rig.steps)
+    if args.calibrate:
+        fit = calibrate(args.out)
+        report["finger_toml"] = str(args.out / "finger.toml")
+        report["calibration"] = summary(fit, rows["slip"], rig.mu_t)
+        if args.grasp:
+            fingers = {"calibrated": fit["controller"], "example": None}
+            report["grasp"] = grasp_ratios(fingers, **config)
+    if args.json:
+        json.dump(report, sys.stdout, indent=2, default=lambda v: None)
+        print()
+    else:
+        print_report(report)
+    return 0
+
+
+def print_report(report: dict) -> None:
+    for p in report["files"]:
+        print(f"wrote {p}")
+    cal = report.get("calibration")
+    if not cal:
+        return
+    print(f"wrote {report['finger_toml']}")
+    mu, mt = cal["mu"], cal["torsional_friction_m"]
+    print(f"mu: fitted {mu['fitted']:.6f}, MuJoCo {mu['mujoco']:g} "
+          f"({100 * (mu['fitted'] / mu['mujoco'] - 1):+.2g} %)")
+    print(f"torsional friction at 1 N, mu·a·pitch: fitted {mt['fitted'] * 1e3:.6f} mm, MuJoCo "
+          f"mu_t {mt['mujoco'] * 1e3:.6f} mm ({100 * (mt['fitted'] / mt['mujoco'] - 1):+.2g} %)")
+    lo, hi = cal["k_ci95"]
+    print(f"k {cal['k']:g} (95 %: [{lo:g}, {hi if hi is not None else math.inf:g}]), "
+          f"c {cal['c_m'] * 1e3:.4f} mm, gamma {cal['gamma']:g}")
+    if cal["joint_fit"]:
+        j = cal["joint_fit"]
+        print(f"joint fit before the friction contact: mu {j['joint_mu']:.4f}, "
+              f"c {j['joint_c'] * 1e3:.4f} mm (the overlap's)")
+    for kind, v in cal["onsets_n_slip_over_n"].items():
+        print(f"{kind} onsets ({v['count']}): N_slip/N on the fitted finger "
+              f"{v['min']:.4f} to {v['max']:.4f}")
+    g = report.get("grasp")
+    if not g:
+        return
+    least = g["least_holding_constant_n"]
+    cfg = ", ".join(f"{k}={v}" for k, v in g["config"].items()) or "its defaults"
+    print(f"grasp (softgrip at {cfg}); least constant grip that holds: {least:g} N")
+    for name, r in g["runs"].items():
+        ratio = f"{r['over_least']:.3f}" if r["over_least"] else "-"
+        print(f"  softgrip on the {name} finger: held {r['held']}, mean "
+              f"{r['mean_force_n']:.2f} N, over the least constant {ratio}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -7,7 +7,8 @@ fingertip pressed on a flat plate; then the fit, and the grasp on the fitted fin
 
 The rig is the grasp's fingertip (the same sphere, mass, friction, soft-contact parameters
 and solver options: ``mujoco_grasp.CONTACT_OPTIONS`` and its neighbours) on a slide along
-the normal, pressed by a force actuator on a 200 g plate of the box's material. The plate
+the normal, pressed by a force actuator on a plate that is the grasp's box (its size, mass
+and material, lying on the face the fingers hold, centred under the tip). The plate
 slides in x and y and turns about the normal through the contact; gravity is off, so the
 normal force is the actuator's. Each measurement starts from rest and presses for
 ``SETTLE_S``; then
@@ -25,9 +26,10 @@ normal force is the actuator's. Each measurement starts from rest and presses fo
 - ``slip``, ``torsion`` and ``combined`` ramp a force on the plate's x slide, a moment on
   its hinge, or both along ratios ``m_n/f_t`` [m], by ``RAMP_PER_S·N`` per second, until
   gross slip, and record the contact's wrench (``mj_contactForce``) then. Gross slip is
-  the first step at which the contact's wrench and the applied load differ by
-  ``ONSET_SHORTFALL`` (0.5 %) of the load (force and moment on one scale, the moment over
-  the tip's radius), looked for from a load of ``ONSET_FROM·N`` on;
+  the first step at which the contact's wrench stops following the load: its change over
+  the step misses the load's by ``ONSET_LAG`` (half) of it (force and moment on one
+  scale, the moment over the tip's radius), looked for from a load of ``ONSET_FROM·N``
+  on;
 - ``all``: ``indentation.csv``, and ``slip.csv`` with the onsets of the three ramps.
 
 The files have ``host-sim experiment``'s columns (docs/experiments.md); the forces and
@@ -68,9 +70,11 @@ SETTLE_S = 0.2  # pressing before a measurement [s]
 RAMP_PER_S = 2.0  # the load s rises by 2·N per second (a force ramp: 2·N newtons/s)
 RAMP_MAX = 5.0  # a ramp that has not slipped by s = 5·N records nothing
 ONSET_FROM = 0.1  # the onset is looked for from s = 0.1·N on (the start's transient)
-ONSET_SHORTFALL = 0.005  # the contact and the applied load differ by 0.5 %: gross slip
-PLATE_MASS = 0.2  # [kg], the box's
-PLATE_HALF = (0.03, 0.03, 0.005)  # [m]
+ONSET_LAG = 0.5  # gross slip: the contact's wrench misses the load's step by half of it
+# The plate is the grasp's box lying on the face the fingers hold (normal along its y):
+# the same mass and inertia about the contact normal, which set MuJoCo's creep (below).
+PLATE_MASS = grasp.BOX_MASS  # [kg]
+PLATE_HALF = (grasp.BOX_HALF[0], grasp.BOX_HALF[2], grasp.BOX_HALF[1])  # [m]
 N_MAX_PREDICT = 40.0  # the prediction's controller range [N], above every onset's force
 
 
@@ -168,21 +172,22 @@ class Rig:
 
     def slip_onset(self, normal_n: float, ft_unit: float, mn_unit: float) -> Optional[Wrench]:
         """Ramps ``s·(ft_unit [N], mn_unit [N·m])`` on the plate, ``s`` rising at
-        ``RAMP_PER_S·normal_n`` per second, until the contact's wrench and the load differ by
-        ``ONSET_SHORTFALL`` of the load; the contact's wrench at that step, or ``None`` if
-        it has not slipped by ``s = RAMP_MAX·normal_n``."""
+        ``RAMP_PER_S·normal_n`` per second, until the contact's wrench changes over a step
+        by ``ONSET_LAG`` of the load's step away from it; the contact's wrench then, or
+        ``None`` if it has not slipped by ``s = RAMP_MAX·normal_n``."""
         self.press(normal_n)
         ds = RAMP_PER_S * normal_n * grasp.DT
         # Force and moment on one scale: the moment as a force at the tip's radius.
         arm = grasp.TIP_RADIUS
-        s = 0.0
+        step = ds * np.array([ft_unit, mn_unit / arm])  # the load's rise per step
+        s, before = 0.0, np.zeros(2)
         while s < RAMP_MAX * normal_n:
             s += ds
             w = self.step(normal_n, s * ft_unit, s * mn_unit)
-            applied = np.array([s * ft_unit, s * mn_unit / arm])
             carried = np.array([w.ft, w.mn / arm])
-            gap = np.linalg.norm(applied - carried)
-            if s > ONSET_FROM * normal_n and gap > ONSET_SHORTFALL * np.linalg.norm(applied):
+            rise, before = carried - before, carried
+            missed = np.linalg.norm(rise - step)
+            if s > ONSET_FROM * normal_n and missed > ONSET_LAG * np.linalg.norm(step):
                 return w
         return None
 

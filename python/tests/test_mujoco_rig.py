@@ -3,9 +3,10 @@ softgrip.calibrate on them, and the grasp on the calibrated finger.
 
 Tolerances, and why:
 - the onsets lie on MuJoCo's elliptic cone within 1e-4 (the cone is what MuJoCo is
-  configured to do; the onset is read once the contact sits on it);
+  configured to do; the onset is read at the step the contact reaches it);
 - the calibrated mu, and the finger's torsional limit mu·a·pitch at gamma = 0, within
-  0.5 % of MuJoCo's mu and mu_t (the onset criterion's own 0.5 %);
+  0.5 % of MuJoCo's mu and mu_t (the onsets are on the cone far closer than that: the
+  rest is room for the fit);
 - each pure onset's N_slip/N on the calibrated finger within 0.5 % of 1; each combined
   one in [1, 1.075]: the finger never predicts a later slip than MuJoCo's, and earlier
   by no more than the distance of softgrip's disc surfaces inside MuJoCo's ellipse when
@@ -78,7 +79,7 @@ def test_onsets_lie_on_mujocos_cone(rig, pipeline):
     radius = np.hypot(ft / (mu * n), mn / (mu_t * n))
     assert np.all(np.abs(radius - 1.0) < 1e-4), radius
     # The combined ramps' onsets are near their ramp's ratio (the contact's wrench turns a
-    # little along the cone before the 0.5 % criterion fires).
+    # little along the cone within the step the onset is read at).
     mixed = rows[(ft > 0) & (mn > 0)]
     ratios = mixed[:, 2] / mixed[:, 1]
     for r in rig.RATIOS:

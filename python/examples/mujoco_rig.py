@@ -8,10 +8,10 @@ fingertip pressed on a flat plate; then the fit, and the grasp on the fitted fin
 The rig is the grasp's fingertip (the same sphere, mass, friction, soft-contact parameters
 and solver options: ``mujoco_grasp.CONTACT_OPTIONS`` and its neighbours) on a slide along
 the normal, pressed by a force actuator on a plate that is the grasp's box (its size, mass
-and material, lying on the face the fingers hold, centred under the tip). The plate
-slides in x and y and turns about the normal through the contact; gravity is off, so the
-normal force is the actuator's. Each measurement starts from rest and presses for
-``SETTLE_S``; then
+and material, lying on the face the fingers hold, centred under the tip). The plate is a
+free body on a frictionless floor, as free as the box in the grasp: it slides and turns
+only against the fingertip. Gravity is off, so the normal force is the actuator's. Each
+measurement starts from rest and presses for ``SETTLE_S``; then
 
 - ``indentation`` records the contact's normal force and the half-width of the overlap of
   sphere and plate, ``sqrt(2·R·d − d²)`` at MuJoCo's penetration ``d``, at each of
@@ -23,14 +23,18 @@ normal force is the actuator's. Each measurement starts from rest and presses fo
   not grow with the force, while the overlap grows as ``N^½``. With one force the
   calibration holds ``γ`` at 0, MuJoCo's law, and ``--calibrate`` refits ``c`` to the
   torsion onsets (``friction_contact``);
-- ``slip``, ``torsion`` and ``combined`` ramp a force on the plate's x slide, a moment on
-  its hinge, or both along ratios ``m_n/f_t`` [m], by ``RAMP_PER_S·N`` per second, until
-  gross slip, and record the contact's wrench (``mj_contactForce``) then. Gross slip is
-  the first step at which the contact's wrench stops following the load: its change over
-  the step misses the load's by ``ONSET_LAG`` (half) of it (force and moment on one
-  scale, the moment over the tip's radius), looked for from a load of ``ONSET_FROM·N``
-  on;
-- ``all``: ``indentation.csv``, and ``slip.csv`` with the onsets of the three ramps.
+- ``slip``, ``torsion`` and ``combined`` ramp a force on the plate along x (at the height
+  of the contact), a moment about the normal, or both along ratios ``m_n/f_t`` [m], by
+  ``RAMP_PER_S·N`` per second, until gross slip, and record the contact's wrench
+  (``mj_contactForce``) then. Gross slip is the first step at which the contact's wrench
+  stops following the load: its change over the step misses the load's by ``ONSET_LAG``
+  (half) of it (force and moment on one scale, the moment over the tip's radius), looked
+  for from a load of ``ONSET_FROM·N`` on;
+- ``all``: ``indentation.csv``, and ``slip.csv`` with the onsets of the three ramps;
+- ``hold`` and ``cyclic``: the margin protocols of ``host-sim experiment hold`` and
+  ``cyclic`` at 4 N (``hold.csv``, ``cyclic.csv``): per axis the static onset, then from
+  fresh contacts each fraction of it held for 2 s after a 0.5 s ramp, or cycled 5 times at
+  2 Hz, recording how far the plate slid and turned.
 
 The files have ``host-sim experiment``'s columns (docs/experiments.md); the forces and
 ratios are its defaults plus 16 N (the grasp grips at up to 20 N). Without noise a
@@ -79,8 +83,12 @@ N_MAX_PREDICT = 40.0  # the prediction's controller range [N], above every onset
 
 
 def rig_mjcf(mu_t: float) -> str:
-    """The rig: a plate on x/y slides and a hinge about the normal through the contact,
-    and the grasp's fingertip above it on a z slide pushed down by a motor."""
+    """The rig: a free plate (the grasp's box) on a frictionless floor, and the grasp's
+    fingertip above it on a z slide pushed down by a motor.
+
+    The plate is a free body, as the box is in the grasp: MuJoCo's noslip post-processor,
+    which the grasp's options turn on, leaves a plate on slide and hinge joints creeping
+    at a rate proportional to the load under any load, and holds a free one."""
     r = grasp.TIP_RADIUS
     px, py, pz = PLATE_HALF
     return f"""
@@ -90,11 +98,11 @@ def rig_mjcf(mu_t: float) -> str:
     <geom {grasp.GEOM_SOFTNESS}/>
   </default>
   <worldbody>
-    <body name="plate" pos="0 0 0">
-      <joint name="px" type="slide" axis="1 0 0"/>
-      <joint name="py" type="slide" axis="0 1 0"/>
-      <joint name="rz" type="hinge" axis="0 0 1"/>
-      <geom name="plate" type="box" size="{px} {py} {pz}" pos="0 0 {-pz}" mass="{PLATE_MASS}"
+    <geom name="floor" type="plane" size="1 1 0.1" pos="0 0 {-2 * pz}" condim="1"
+          priority="1" contype="1" conaffinity="1"/>
+    <body name="plate" pos="0 0 {-pz}">
+      <freejoint/>
+      <geom name="plate" type="box" size="{px} {py} {pz}" mass="{PLATE_MASS}"
             contype="1" conaffinity="1" condim="6" friction="{grasp.BOX_FRICTION}"/>
     </body>
     <body name="finger" pos="0 0 {r}">
@@ -107,8 +115,6 @@ def rig_mjcf(mu_t: float) -> str:
   </worldbody>
   <actuator>
     <motor name="press" joint="fz" gear="-1"/>
-    <motor name="push" joint="px"/>
-    <motor name="turn" joint="rz"/>
   </actuator>
 </mujoco>
 """
@@ -133,6 +139,7 @@ class Rig:
         self.data = mujoco.MjData(self.model)
         geom = lambda n: mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_GEOM, n)  # noqa: E731
         self.pair = {geom("tip"), geom("plate")}
+        self.plate = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, "plate")
         self.steps = 0
         self._f6 = np.zeros(6)
 
@@ -151,10 +158,27 @@ class Rig:
         return w
 
     def step(self, press_n: float, push_n: float = 0.0, turn_nm: float = 0.0) -> Wrench:
-        self.data.ctrl[:] = [press_n, push_n, turn_nm]
-        mujoco.mj_step(self.model, self.data)
+        """One step: the finger pressed with ``press_n``, the plate pushed along x with
+        ``push_n`` at the height of its top face (no tipping moment) and turned about the
+        normal with ``turn_nm``."""
+        d = self.data
+        d.ctrl[0] = press_n
+        d.qfrc_applied[:] = 0.0
+        top = d.xpos[self.plate] + np.array([0.0, 0.0, PLATE_HALF[2]])
+        mujoco.mj_applyFT(
+            self.model, d, np.array([push_n, 0.0, 0.0]), np.array([0.0, 0.0, turn_nm]),
+            top, self.plate, d.qfrc_applied,
+        )
+        mujoco.mj_step(self.model, d)
         self.steps += 1
         return self.wrench()
+
+    def pose(self) -> np.ndarray:
+        """The plate's (x [m], y [m], turn about the normal [rad]): its slip under the
+        fingertip, which only moves along the normal."""
+        x, y = self.data.xpos[self.plate][:2]
+        rot = self.data.xmat[self.plate].reshape(3, 3)
+        return np.array([x, y, math.atan2(rot[1, 0], rot[0, 0])])
 
     def press(self, normal_n: float) -> Wrench:
         """From rest, presses with ``normal_n`` for ``SETTLE_S``; the contact then."""
@@ -199,9 +223,13 @@ def experiment(
     ratios=RATIOS,
     indentation_forces=INDENTATION_FORCES,
 ) -> dict[str, list[tuple[float, ...]]]:
-    """The rows of ``kind`` (indentation, slip, torsion, combined or all), by file name
-    (``all``: indentation and slip)."""
+    """The rows of ``kind`` (indentation, slip, torsion, combined, all, hold or cyclic),
+    by file name (``all``: indentation and slip)."""
     out: dict[str, list] = {}
+    if kind == "hold":
+        return dict(hold=hold(rig))
+    if kind == "cyclic":
+        return dict(cyclic=cyclic(rig))
     if kind in ("indentation", "all"):
         presses = -(-INDENTATION_ROWS // max(len(indentation_forces), 1))
         out["indentation"] = [
@@ -226,8 +254,118 @@ def experiment(
     return out
 
 
+# --- The margin protocols (host-sim experiment hold and cyclic) ---------------------------
+MARGIN_NORMAL_N = 4.0  # [N]
+HOLD_FRACTIONS = (0.5, 0.6, 0.7, 0.8, 0.9, 1.0)  # of the axis's static onset
+HOLD_RAMP_S, HOLD_S = 0.5, 2.0
+CYCLIC_FRACTIONS = (0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95, 1.0)
+CYCLES, CYCLE_HZ = 5, 2.0
+SLID_OFF_M, SLID_OFF_RAD = 0.01, 0.2  # host-sim's drop: a test stops there
+AXES = {"force": (1.0, 0.0), "torsion": (0.0, TORSION_UNIT_NM)}
+
+
+def axis_load(axis: str, load: float) -> tuple[float, float]:
+    """``(f_t, m_n)`` of ``load`` on ``axis``."""
+    return (load, 0.0) if axis == "force" else (0.0, load)
+
+
+def slid_off(pose: np.ndarray) -> bool:
+    return bool(np.hypot(pose[0], pose[1]) > SLID_OFF_M or abs(pose[2]) > SLID_OFF_RAD)
+
+
+def margin_onset(rig: Rig, normal_n: float, axis: str) -> Optional[tuple[float, float]]:
+    """One static onset on ``axis``: (normal force [N], load [N or N·m])."""
+    w = rig.slip_onset(normal_n, *AXES[axis])
+    return None if w is None else (w.n, w.ft if axis == "force" else w.mn)
+
+
+def hold(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=HOLD_FRACTIONS) -> list:
+    """``host-sim experiment hold``'s rows: per axis its onset (``time_s`` 0), then from
+    fresh contacts each fraction of it ramped in ``HOLD_RAMP_S`` (``(1 − cos πt/T)/2``)
+    and held ``HOLD_S``: how far the plate slid and turned over the hold, and at what rate
+    over its last quarter; ``time_s`` is how long the test lasted (less if it slid off)."""
+    rows = []
+    ramp, held = round(HOLD_RAMP_S / grasp.DT), round(HOLD_S / grasp.DT)
+    window = held // 4
+    for axis in AXES:
+        onset = margin_onset(rig, normal_n, axis)
+        if onset is None:
+            continue
+        rows.append((axis, onset[0], 1.0, *axis_load(axis, onset[1]), 0.0, 0.0, 0.0, 0.0, 0.0))
+        for fraction in fractions:
+            load = fraction * onset[1]
+            rig.press(normal_n)
+            origin = rig.pose()
+            start, trail, w = np.zeros(3), [], Wrench()
+            ticks, now = 0, np.zeros(3)
+            while ticks < ramp + held and not slid_off(now):
+                if ticks == ramp:
+                    start = now
+                u = 0.5 * (1.0 - math.cos(math.pi * (ticks + 1) / ramp)) if ticks < ramp else 1.0
+                trail = (trail + [now])[-window:]
+                w = rig.step(normal_n, *axis_load(axis, load * u))
+                now = rig.pose() - origin
+                ticks += 1
+            late, span = trail[0], max(len(trail), 1) * grasp.DT
+            rows.append((
+                axis, w.n, fraction, *axis_load(axis, load), ticks * grasp.DT,
+                float(np.hypot(*(now - start)[:2])), abs(float(now[2] - start[2])),
+                float(np.hypot(*(now - late)[:2])) / span, abs(float(now[2] - late[2])) / span,
+            ))
+    return rows
+
+
+def cyclic(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=CYCLIC_FRACTIONS) -> list:
+    """``host-sim experiment cyclic``'s rows: per axis its onset (``cycle`` 0), then from
+    fresh contacts, for each fraction of it, ``CYCLES`` cycles ``peak·(1 − cos 2πft)/2`` at
+    ``CYCLE_HZ``: how far the plate slid and turned over each cycle (zero load to zero
+    load). A test stops when the plate slides off."""
+    rows = []
+    ticks = max(round(1.0 / (CYCLE_HZ * grasp.DT)), 2)
+    for axis in AXES:
+        onset = margin_onset(rig, normal_n, axis)
+        if onset is None:
+            continue
+        rows.append((axis, onset[0], 1.0, 0, *axis_load(axis, onset[1]), 0.0, 0.0))
+        for fraction in fractions:
+            peak = fraction * onset[1]
+            rig.press(normal_n)
+            origin = rig.pose()
+            last = np.zeros(3)
+            for cycle in range(1, CYCLES + 1):
+                for k in range(1, ticks + 1):
+                    u = 0.5 * (1.0 - math.cos(2.0 * math.pi * k / ticks))
+                    w = rig.step(normal_n, *axis_load(axis, peak * u))
+                now = rig.pose() - origin
+                rows.append((
+                    axis, w.n, fraction, cycle, *axis_load(axis, peak),
+                    float(np.hypot(*(now - last)[:2])), abs(float(now[2] - last[2])),
+                ))
+                last = now
+                if slid_off(now):
+                    break
+    return rows
+
+
 INDENTATION_HEADER = "normal_force_n,half_width_m"
 SLIP_HEADER = "normal_force_n,tangential_force_n,torsional_moment_nm"
+HOLD_HEADER = (
+    "axis,normal_force_n,fraction,tangential_force_n,torsional_moment_nm,time_s,slide_m,"
+    "turn_rad,slide_rate_m_s,turn_rate_rad_s"
+)
+CYCLIC_HEADER = (
+    "axis,normal_force_n,fraction,cycle,tangential_force_n,torsional_moment_nm,slide_m,"
+    "turn_rad"
+)
+HEADERS = dict(indentation=INDENTATION_HEADER, hold=HOLD_HEADER, cyclic=CYCLIC_HEADER)
+
+
+def cell(v) -> str:
+    """A CSV field: the axis as it is, a cycle number as an integer, a number in shortest
+    round-trip form."""
+    if isinstance(v, str):
+        return v
+    return str(v) if isinstance(v, int) else repr(float(v))
 
 
 def write_csvs(rows: dict[str, list], out: pathlib.Path) -> list[pathlib.Path]:
@@ -236,9 +374,9 @@ def write_csvs(rows: dict[str, list], out: pathlib.Path) -> list[pathlib.Path]:
     out.mkdir(parents=True, exist_ok=True)
     paths = []
     for name, table in rows.items():
-        header = INDENTATION_HEADER if name == "indentation" else SLIP_HEADER
+        header = HEADERS.get(name, SLIP_HEADER)
         path = out / f"{name}.csv"
-        lines = [header] + [",".join(repr(float(v)) for v in row) for row in table]
+        lines = [header] + [",".join(cell(v) for v in row) for row in table]
         path.write_text("\n".join(lines) + "\n")
         paths.append(path)
     return paths
@@ -324,7 +462,9 @@ def summary(fit: dict, rows, mu_t: float) -> dict:
 
 def main(argv: Optional[list[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("kind", choices=["indentation", "slip", "torsion", "combined", "all"])
+    ap.add_argument(
+        "kind", choices=["indentation", "slip", "torsion", "combined", "all", "hold", "cyclic"]
+    )
     ap.add_argument("--out", required=True, type=pathlib.Path, help="output directory")
     ap.add_argument("--forces", default=",".join(f"{f:g}" for f in FORCES), help="[N]")
     ap.add_argument("--ratios", default=",".join(f"{r:g}" for r in RATIOS), help="[m]")

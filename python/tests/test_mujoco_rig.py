@@ -147,3 +147,31 @@ def test_grasp_reads_the_calibrated_finger(pipeline, capsys):
     # An infinite k (uniform pressure) is JSON's null.
     assert got["softgrip_finger"]["k"] == (None if want["k"] == float("inf") else want["k"])
     assert got["finger"] == grasp.FINGER  # the scene keeps its own
+
+
+def test_mujocos_contact_neither_creeps_nor_ratchets(rig):
+    """The margin protocols below the onset: a sustained load held 2 s, and 5 load cycles
+    at 2 Hz, at half and nine tenths of each axis's onset (4 N). In torsion the plate does
+    not turn at all (1e-9 rad is rounding); along the force it moves by the residue of
+    MuJoCo's noslip solve, under 1 µm a cycle and 5 µm/s held, and no cycle moves it more
+    than the first two (no ratchet)."""
+    r = rig.Rig()
+    fractions = (0.5, 0.9)
+    for row in rig.hold(r, fractions=fractions):
+        axis, _, fraction, _, _, time_s, slide, turn, slide_rate, turn_rate = row
+        if time_s == 0.0:
+            continue  # the onset
+        assert time_s == pytest.approx(rig.HOLD_RAMP_S + rig.HOLD_S), row  # held throughout
+        assert turn < 1e-9 and turn_rate < 1e-9, row
+        assert slide < 1e-5 and slide_rate < 5e-6, row
+    cycles = {}
+    for row in rig.cyclic(r, fractions=fractions):
+        axis, _, fraction, cycle, _, _, slide, turn = row
+        if cycle == 0:
+            continue
+        assert turn < 1e-9, row
+        assert slide < 1e-6, row
+        cycles.setdefault((axis, fraction), []).append(slide)
+    for key, slides in cycles.items():
+        assert len(slides) == rig.CYCLES, key
+        assert max(slides[2:]) <= max(slides[:2]) + 1e-7, (key, slides)

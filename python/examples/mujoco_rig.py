@@ -33,8 +33,8 @@ measurement starts from rest and presses for ``SETTLE_S``; then
 - ``all``: ``indentation.csv``, and ``slip.csv`` with the onsets of the three ramps;
 - ``hold`` and ``cyclic``: the margin protocols of ``host-sim experiment hold`` and
   ``cyclic`` at 4 N (``hold.csv``, ``cyclic.csv``): per axis the static onset, then from
-  fresh contacts each fraction of it held for 2 s after a 0.5 s ramp, or cycled 5 times at
-  2 Hz, recording how far the plate slid and turned.
+  fresh contacts each fraction of it held for 1.5 s after a 0.5 s ramp, or cycled 10 times
+  at 4 Hz, recording how far the plate slid and turned.
 
 The files have ``host-sim experiment``'s columns (docs/experiments.md); the forces and
 ratios are its defaults plus 16 N (the grasp grips at up to 20 N). Without noise a
@@ -257,9 +257,9 @@ def experiment(
 # --- The margin protocols (host-sim experiment hold and cyclic) ---------------------------
 MARGIN_NORMAL_N = 4.0  # [N]
 HOLD_FRACTIONS = (0.5, 0.6, 0.7, 0.8, 0.9, 1.0)  # of the axis's static onset
-HOLD_RAMP_S, HOLD_S = 0.5, 2.0
+HOLD_RAMP_S, HOLD_S = 0.5, 1.5
 CYCLIC_FRACTIONS = (0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95, 1.0)
-CYCLES, CYCLE_HZ = 5, 2.0
+CYCLES, CYCLE_HZ = 10, 4.0
 SLID_OFF_M, SLID_OFF_RAD = 0.01, 0.2  # host-sim's drop: a test stops there
 AXES = {"force": (1.0, 0.0), "torsion": (0.0, TORSION_UNIT_NM)}
 

@@ -9,7 +9,9 @@
 //! - [`sweep`]: the controllers' knobs and one trial's runs; [`stats`]: the summary rows
 //!   (per seed and pooled);
 //! - [`report`]: text tables, the dominance checks and `bench.json`; [`plot`]: the Pareto
-//!   plots; [`shard`]: a share of the work units, and the merge of shards.
+//!   plots; [`shard`]: a share of the work units, and the merge of shards;
+//! - [`summary`]: what a run is published by; [`reverify`]: one seed of a published run
+//!   rerun on this build and compared with it.
 //!
 //! Trials run in parallel (rayon), each run without per-tick samples (unless asked for
 //! traces), softgrip on the direct in-memory link. [`run`] is the whole bench on plain
@@ -26,6 +28,7 @@ pub mod onset_table;
 pub mod oracle;
 pub mod plot;
 pub mod report;
+pub mod reverify;
 pub mod shard;
 pub mod stats;
 pub mod summary;

@@ -78,7 +78,7 @@ pub struct BenchArgs {
     pub finger: Option<PathBuf>,
 }
 
-/// `bench`'s subcommands, on the shard files of `--shard`.
+/// `bench`'s subcommands, on the shard files of `--shard` and on written runs.
 #[derive(Debug, clap::Subcommand)]
 pub enum ShardCommand {
     /// Merges the shard files of one run (`bench --shard I/N`) into the files the whole
@@ -101,6 +101,31 @@ pub enum ShardCommand {
     /// trials-mu-mismatch.csv. A run written before runs recorded their build needs
     /// --made-at.
     Summary(SummaryArgs),
+    /// Reruns one seed of a summary's run with this build, each controller at its
+    /// default only, and compares the summary's per_seed_defaults rows of that seed with
+    /// the rerun's, bit for bit. If every row is equal, appends this build's provenance
+    /// (with the seed and the rows compared) to the summary's provenance.reverified and
+    /// rewrites it, every other byte as it was; otherwise writes nothing and names the
+    /// first differing row and field. For a change meant to keep every output
+    /// bit-identical: it shows that one seed reproduces, not the others.
+    Reverify(ReverifyArgs),
+}
+
+/// Arguments of `host-sim bench reverify`.
+#[derive(Debug, Args)]
+pub struct ReverifyArgs {
+    /// The run's summary.json (rewritten in place when its rows reproduce).
+    pub summary: PathBuf,
+    /// The seed to rerun: one of the run's.
+    #[arg(long)]
+    pub seed: u64,
+    /// Run even when the sources differ from their commit; the entry then records
+    /// dirty, which no published run accepts (for tests).
+    #[arg(long)]
+    pub allow_dirty: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Arguments of `host-sim bench summary`.
@@ -292,6 +317,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         Some(ShardCommand::Select(a)) => return select(a),
         Some(ShardCommand::Rejudge(a)) => return rejudge(a),
         Some(ShardCommand::Summary(a)) => return summary(a),
+        Some(ShardCommand::Reverify(a)) => return reverify(a),
         None => {}
     }
     let opts = options(args)?;
@@ -350,6 +376,25 @@ fn summary(a: &SummaryArgs) -> Result<(), CliError> {
         .unwrap_or_else(|| bench::summary::path_in(&a.dir));
     bench::summary::write(&out, &value).map_err(CliError::Failed)?;
     println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// `host-sim bench reverify`.
+fn reverify(a: &ReverifyArgs) -> Result<(), CliError> {
+    let here = std::env::current_dir().map_err(|e| CliError::Failed(e.to_string()))?;
+    let start = std::time::Instant::now();
+    let done = bench::reverify::reverify(&a.summary, a.seed, a.allow_dirty, &here, a.quiet)
+        .map_err(CliError::Failed)?;
+    println!(
+        "seed {}: {} rows of per_seed_defaults equal, bit for bit ({:.0} s wall); appended \
+         to provenance.reverified (commit {}, constants digest {})\nwrote {}",
+        a.seed,
+        done.rows_compared,
+        start.elapsed().as_secs_f64(),
+        done.entry["commit"].as_str().unwrap_or("?"),
+        done.entry["constants_digest"].as_str().unwrap_or("?"),
+        a.summary.display()
+    );
     Ok(())
 }
 

@@ -283,7 +283,9 @@ def hold(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=HOLD_FRACTIONS) 
     """``host-sim experiment hold``'s rows: per axis its onset (``time_s`` 0), then from
     fresh contacts each fraction of it ramped in ``HOLD_RAMP_S`` (``(1 − cos πt/T)/2``)
     and held ``HOLD_S``: how far the plate slid and turned over the hold, and at what rate
-    over its last quarter; ``time_s`` is how long the test lasted (less if it slid off)."""
+    over its last quarter; ``time_s`` is how long the test lasted (less if it slid off).
+    The normal force of a held row is the actuator's (the contact's chatters once the
+    plate slides); an onset's is the contact's."""
     rows = []
     ramp, held = round(HOLD_RAMP_S / grasp.DT), round(HOLD_S / grasp.DT)
     window = held // 4
@@ -296,19 +298,19 @@ def hold(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=HOLD_FRACTIONS) 
             load = fraction * onset[1]
             rig.press(normal_n)
             origin = rig.pose()
-            start, trail, w = np.zeros(3), [], Wrench()
+            start, trail = np.zeros(3), []
             ticks, now = 0, np.zeros(3)
             while ticks < ramp + held and not slid_off(now):
                 if ticks == ramp:
                     start = now
                 u = 0.5 * (1.0 - math.cos(math.pi * (ticks + 1) / ramp)) if ticks < ramp else 1.0
                 trail = (trail + [now])[-window:]
-                w = rig.step(normal_n, *axis_load(axis, load * u))
+                rig.step(normal_n, *axis_load(axis, load * u))
                 now = rig.pose() - origin
                 ticks += 1
             late, span = trail[0], max(len(trail), 1) * grasp.DT
             rows.append((
-                axis, w.n, fraction, *axis_load(axis, load), ticks * grasp.DT,
+                axis, normal_n, fraction, *axis_load(axis, load), ticks * grasp.DT,
                 float(np.hypot(*(now - start)[:2])), abs(float(now[2] - start[2])),
                 float(np.hypot(*(now - late)[:2])) / span, abs(float(now[2] - late[2])) / span,
             ))
@@ -319,7 +321,8 @@ def cyclic(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=CYCLIC_FRACTIO
     """``host-sim experiment cyclic``'s rows: per axis its onset (``cycle`` 0), then from
     fresh contacts, for each fraction of it, ``CYCLES`` cycles ``peak·(1 − cos 2πft)/2`` at
     ``CYCLE_HZ``: how far the plate slid and turned over each cycle (zero load to zero
-    load). A test stops when the plate slides off."""
+    load), the normal force the actuator's as in ``hold``. A test stops when the plate
+    slides off."""
     rows = []
     ticks = max(round(1.0 / (CYCLE_HZ * grasp.DT)), 2)
     for axis in AXES:
@@ -335,10 +338,10 @@ def cyclic(rig: Rig, normal_n: float = MARGIN_NORMAL_N, fractions=CYCLIC_FRACTIO
             for cycle in range(1, CYCLES + 1):
                 for k in range(1, ticks + 1):
                     u = 0.5 * (1.0 - math.cos(2.0 * math.pi * k / ticks))
-                    w = rig.step(normal_n, *axis_load(axis, peak * u))
+                    rig.step(normal_n, *axis_load(axis, peak * u))
                 now = rig.pose() - origin
                 rows.append((
-                    axis, w.n, fraction, cycle, *axis_load(axis, peak),
+                    axis, normal_n, fraction, cycle, *axis_load(axis, peak),
                     float(np.hypot(*(now - last)[:2])), abs(float(now[2] - last[2])),
                 ))
                 last = now

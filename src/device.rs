@@ -368,6 +368,8 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
             tick_cost: cost,
             mu_estimate: out.mu_estimate,
             margin: out.margin,
+            load_factor: out.load_factor,
+            lead_n: out.lead_n,
         })
     }
 

@@ -231,6 +231,8 @@ fn all_replies() -> Vec<Reply> {
             fault_active: false,
             tick_cost: 12_345,
             margin: Default::default(),
+            load_factor: Default::default(),
+            lead_n: Default::default(),
             mu_estimate: Default::default(),
         }),
         Reply::Command(CommandFrame {
@@ -242,6 +244,8 @@ fn all_replies() -> Vec<Reply> {
             fault_active: true,
             tick_cost: 0,
             margin: Default::default(),
+            load_factor: Default::default(),
+            lead_n: Default::default(),
             mu_estimate: Default::default(),
         }),
         Reply::Stats(stats_sample()),
@@ -311,36 +315,48 @@ fn long_text(n: usize) -> String {
 // (a float has one size; a new integer should be set to its widest here).
 #[allow(clippy::needless_update)]
 fn largest_requests() -> Vec<Request> {
+    // Every float is one whose eight bytes are all non-zero (1.1, f64::MAX), so that the
+    // configuration's encoding is one long run without a zero: COBS's worst case.
+    let x = 1.1;
     let config = ControllerConfig {
         mu: f64::MAX,
         shape: FingerShape::Disc,
-        k: f64::INFINITY,
+        k: x,
         skew: Some(SkewParams {
             delta_over_a: 0.9,
             alpha: 1.1,
             locus_over_a: 0.45,
         }),
-        c_m_per_n_gamma: 1.0,
-        gamma: 0.5,
-        half_length_m: 1.0,
-        safety: 1.0,
-        n_min_n: 1.0,
-        n_max_n: 2.0,
-        rise_rate_n_per_s: 1.0,
-        fall_rate_n_per_s: 1.0,
-        tick_period_s: 1.0,
-        stale_timeout_s: 1.0,
-        fault_force_n: 1.0,
-        force_range_n: 1.0,
-        moment_range_nm: 1.0,
+        c_m_per_n_gamma: x,
+        gamma: x,
+        half_length_m: x,
+        safety: x,
+        n_min_n: x,
+        n_max_n: x,
+        rise_rate_n_per_s: x,
+        fall_rate_n_per_s: x,
+        tick_period_s: x,
+        stale_timeout_s: x,
+        fault_force_n: x,
+        force_range_n: x,
+        moment_range_nm: x,
         mode: Mode::Table,
         force_nodes: u16::MAX,
         quadrature_order: u16::MAX,
         table_samples: u16::MAX,
         aspect_count: u16::MAX,
-        actuator_lag_s: Default::default(),
-        actuator_slew_n_per_s: Default::default(),
-        ..ControllerConfig::DEFAULT
+        actuator_lag_s: x,
+        actuator_slew_n_per_s: x,
+        disc_torsion_factor: x,
+        cyclic_factor: x,
+        steady_factor: x,
+        steady_ramp_s: x,
+        slip_step_incipient: x,
+        slip_step_gross: x,
+        slip_margin_max: x,
+        creep_margin_max: x,
+        mu_floor_fraction: x,
+        untold_lag_s: x,
     };
     vec![
         Request::Hello {
@@ -383,6 +399,8 @@ fn largest_replies() -> Vec<Reply> {
             fault_active: true,
             tick_cost: u32::MAX,
             margin: Default::default(),
+            load_factor: Default::default(),
+            lead_n: Default::default(),
             mu_estimate: Default::default(),
         }),
         Reply::Stats(Stats {
@@ -1074,6 +1092,9 @@ const SCHEMA_HISTORY: &[(u32, u32)] = &[
     // Protocol 4: the device ticks its controller through silence; Stats reports
     // idle_ticks, command_n and fault_active; SetPacing/Paced for lockstep simulations.
     (0x4322_0509, 0x83d5_8a64),
+    // Protocol 5: the margins in ControllerConfig (disc_torsion_factor to untold_lag_s),
+    // the margin's load factor and the actuator lead in CommandFrame.
+    (0xd7cf_d0e5, 0xfb09_5d82),
 ];
 
 /// A fixed value of every variant, encoded: it moves whenever the encoding does.
@@ -1169,6 +1190,8 @@ fn golden_digest() -> u32 {
             fault_active: i % 2 == 1,
             tick_cost: 1_000 + 300 * i as u32,
             margin: Default::default(),
+            load_factor: Default::default(),
+            lead_n: Default::default(),
             mu_estimate: Default::default(),
         }));
     }
@@ -1254,6 +1277,8 @@ fn every_variant_and_field_is_known(req: &Request, rep: &Reply) {
             tick_cost: _,
             mu_estimate: _,
             margin: _,
+            load_factor: _,
+            lead_n: _,
         }) => match status {
             Status::Ok | Status::Saturated | Status::SensorFault | Status::StaleInput => {}
         },
@@ -1458,6 +1483,8 @@ fn arb_reply() -> impl Strategy<Value = Reply> {
                         fault_active,
                         tick_cost,
                         margin: Default::default(),
+                        load_factor: Default::default(),
+                        lead_n: Default::default(),
                         mu_estimate: Default::default(),
                     })
                 }

@@ -888,7 +888,7 @@ fn zero_loads_and_loads_no_force_can_hold() {
                 // factor; the safety asked is never below 1.)
                 // A round patch's moment carries its own factor on top.
                 let safety = (cfg.safety * o.margin).max(1.0);
-                let m = m * cfg.shape.torsion_safety_factor();
+                let m = m * cfg.torsion_factor();
                 let want = safety * (f * sf / cfg.mu).hypot(m * sm / (cfg.mu * r));
                 assert!(
                     (o.required_n / want - 1.0).abs() < 1e-14,

@@ -38,9 +38,18 @@ class TickStatus:
         """The friction coefficient the controller believes now."""
     @property
     def margin(self) -> float:
-        """The margin multiplying the safety factor: a slip signal raises it, a cycling load
-        multiplies it by 1.45 and a steady one by a factor ramping from 1 to 0.85 over 0.5 s
-        (the safety asked is never below 1)."""
+        """The margin multiplying the safety factor, slip_margin * load_factor (the safety
+        asked is never below 1)."""
+    @property
+    def slip_margin(self) -> float:
+        """The slip response's part of the margin: 1 until a slip signal raises it."""
+    @property
+    def load_factor(self) -> float:
+        """The load's part of the margin: cyclic_factor while the load cycles, a factor
+        ramping from 1 to steady_factor over steady_ramp_s while it is steady, else 1."""
+    @property
+    def lead_n(self) -> float:
+        """How far the target leads the requirement for the actuator's lag [N]."""
 
 class Controller:
     """The slip-prevention controller (f64 precompute and tick).
@@ -79,6 +88,16 @@ class Controller:
         aspect_count: int = 8,
         actuator_lag_s: float = 0.0,
         actuator_slew_n_per_s: float = float("inf"),
+        disc_torsion_factor: float = 1.5,
+        cyclic_factor: float = 1.45,
+        steady_factor: float = 0.85,
+        steady_ramp_s: float = 0.5,
+        slip_step_incipient: float = 0.05,
+        slip_step_gross: float = 0.3,
+        slip_margin_max: float = 3.0,
+        creep_margin_max: float = 1.1,
+        mu_floor_fraction: float = 0.5,
+        untold_lag_s: float = 0.04,
         initial_force_n: Optional[float] = None,
     ) -> None: ...
     def tick(

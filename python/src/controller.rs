@@ -22,8 +22,14 @@ pub(crate) struct TickStatus {
     iterations: u8,
     /// The friction coefficient the controller believes now [1].
     mu_estimate: f64,
-    /// The margin multiplying the safety factor [1].
+    /// The margin multiplying the safety factor [1]: `slip_margin · load_factor`.
     margin: f64,
+    /// The slip response's part of the margin [1].
+    slip_margin: f64,
+    /// The load's part of the margin (cyclic or steady factor, else 1) [1].
+    load_factor: f64,
+    /// How far the target leads the requirement for the actuator's lag [N].
+    lead_n: f64,
 }
 
 #[pymethods]
@@ -31,7 +37,8 @@ impl TickStatus {
     fn __repr__(&self) -> String {
         format!(
             "TickStatus(status={:?}, command_n={}, required_n={}, n_slip_n={}, \
-             utilisation={}, fault_active={}, iterations={}, mu_estimate={}, margin={})",
+             utilisation={}, fault_active={}, iterations={}, mu_estimate={}, margin={}, \
+             slip_margin={}, load_factor={}, lead_n={})",
             self.status,
             self.command_n,
             self.required_n,
@@ -40,7 +47,10 @@ impl TickStatus {
             if self.fault_active { "True" } else { "False" },
             self.iterations,
             self.mu_estimate,
-            self.margin
+            self.margin,
+            self.slip_margin,
+            self.load_factor,
+            self.lead_n
         )
     }
 }
@@ -57,6 +67,9 @@ impl From<TickOutput<f64>> for TickStatus {
             iterations: o.iterations,
             mu_estimate: o.mu_estimate,
             margin: o.margin,
+            slip_margin: o.slip_margin,
+            load_factor: o.load_factor,
+            lead_n: o.lead_n,
         }
     }
 }
@@ -111,6 +124,9 @@ impl Controller {
         stale_timeout_s=0.02, fault_force_n=10.0, force_range_n=100.0, \
         moment_range_nm=2.0, mode='ellipse', force_nodes=48, quadrature_order=28, \
         table_samples=48, aspect_count=8, actuator_lag_s=0.0, actuator_slew_n_per_s=1e999, \
+        disc_torsion_factor=1.5, cyclic_factor=1.45, steady_factor=0.85, steady_ramp_s=0.5, \
+        slip_step_incipient=0.05, slip_step_gross=0.3, slip_margin_max=3.0, \
+        creep_margin_max=1.1, mu_floor_fraction=0.5, untold_lag_s=0.04, \
         initial_force_n=None)")]
     fn new(
         py: Python<'_>,

@@ -35,6 +35,7 @@
 //! Cost per tick: two filters and a comparison; on a sample, about ten more operations and
 //! one division.
 
+use crate::controller::config::ControllerConfig;
 use crate::real::Real;
 
 /// Time constant of the filter on the command and the measured force \[s\]
@@ -90,8 +91,8 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
     }
 }
 
-/// The lag assumed of an actuator nobody described (`actuator_lag_s = 0`) until its own
-/// samples say otherwise \[s\]: the slow end of tendon, cable and geared-motor grippers,
+/// The default of `untold_lag_s`: the lag assumed of an actuator nobody described
+/// (`actuator_lag_s = 0`) until its own samples say otherwise \[s\]: the slow end of tendon, cable and geared-motor grippers,
 /// and the lead the first rise gets for an undescribed slew too
 /// (docs/decisions/untold-actuator-lag.md).
 pub const UNTOLD_LAG_S: f64 = 0.04;
@@ -99,12 +100,13 @@ pub const UNTOLD_LAG_S: f64 = 0.04;
 /// outweigh (docs/decisions/untold-actuator-lag.md).
 pub const UNTOLD_PRIOR_SAMPLES: f64 = 2.0;
 
-/// The lag the identifier starts from: the configured one, or [`UNTOLD_LAG_S`] when not told.
-fn prior_lag(actuator_lag_s: f64) -> f64 {
+/// The lag the identifier starts from: the configured one, or `untold_lag_s` when not
+/// told.
+fn prior_lag(actuator_lag_s: f64, untold_lag_s: f64) -> f64 {
     if actuator_lag_s > 0.0 {
         actuator_lag_s
     } else {
-        UNTOLD_LAG_S
+        untold_lag_s
     }
 }
 
@@ -136,9 +138,11 @@ pub(crate) struct ActuatorId<T> {
 
 impl<T: Real> ActuatorId<T> {
     /// For a validated configuration's actuator lag and slew (the priors) and tick period.
-    pub(crate) fn new(actuator_lag_s: f64, actuator_slew_n_per_s: f64, tick_period_s: f64) -> Self {
-        let w = prior_weight(actuator_lag_s);
-        let actuator_lag_s = prior_lag(actuator_lag_s);
+    pub(crate) fn new(config: &ControllerConfig) -> Self {
+        let (actuator_slew_n_per_s, tick_period_s) =
+            (config.actuator_slew_n_per_s, config.tick_period_s);
+        let w = prior_weight(config.actuator_lag_s);
+        let actuator_lag_s = prior_lag(config.actuator_lag_s, config.untold_lag_s);
         Self {
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             inv_dt: T::of(1.0 / tick_period_s),

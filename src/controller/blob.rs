@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 /// The blob's magic bytes.
 pub const BLOB_MAGIC: [u8; 4] = *b"SGTB";
 /// The blob format's version.
-pub const BLOB_VERSION: u16 = 2;
+pub const BLOB_VERSION: u16 = 3;
 const HEADER_LEN: usize = 10;
 /// A buffer of this many bytes holds any blob: header, body, CRC. The largest grid (table
 /// mode, every capacity at its maximum, with skew) encodes to 2 807 bytes

@@ -1,5 +1,10 @@
 //! The controller's configuration, validated once at start-up.
 
+use crate::controller::actuator::UNTOLD_LAG_S;
+use crate::controller::lead::{CYCLIC_SAFETY_FACTOR, STEADY_RAMP_S, STEADY_SAFETY_FACTOR};
+use crate::controller::slip::{
+    CREEP_MARGIN_MAX, MARGIN_MAX, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
+};
 use crate::error::{check, ConfigError};
 use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
@@ -105,20 +110,11 @@ impl FingerShape {
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|s| s.name() == name)
     }
-
-    /// The factor on the safety factor that this shape's torsional moment carries in the
-    /// tick's requirement [-]: [`DISC_TORSION_SAFETY_FACTOR`] on a round patch, 1 on a
-    /// hemicylinder.
-    pub const fn torsion_safety_factor(self) -> f64 {
-        match self {
-            FingerShape::Rect => 1.0,
-            FingerShape::Disc => DISC_TORSION_SAFETY_FACTOR,
-        }
-    }
 }
 
-/// The factor \[-\] on `s` that a round patch's moment ([`FingerShape::Disc`]) carries in
-/// the tick's requirement, one multiplication; `N_slip` stays the model's own. Chosen in
+/// The default of `disc_torsion_factor` \[-\]: the factor on `s` that a round patch's
+/// moment ([`FingerShape::Disc`]) carries in the tick's requirement, one multiplication;
+/// `N_slip` stays the model's own. Chosen in
 /// docs/decisions/round-patch-torsion-factor.md, shown by
 /// `tests/controller.rs::a_round_patchs_moment_carries_its_own_factor_in_the_tick`.
 pub const DISC_TORSION_SAFETY_FACTOR: f64 = 1.5;
@@ -209,10 +205,10 @@ with_schema! {
         /// the disc).
         pub half_length_m: f64,
         /// Safety factor `s ≥ 1`: the load times `s` must lie inside the limit surface.
-        /// While the load cycles it is multiplied by the lead's `CYCLIC_SAFETY_FACTOR`;
-        /// once the load has been steady for `STEADY_HOLD_S` (and no slip is remembered)
-        /// by a factor that ramps down to `STEADY_SAFETY_FACTOR` over `STEADY_RAMP_S`,
-        /// the product never below 1 (`controller::lead`).
+        /// While the load cycles it is multiplied by `cyclic_factor`; once the load has
+        /// been steady for the lead's `STEADY_HOLD_S` (and no slip is remembered) by a
+        /// factor that ramps down to `steady_factor` over `steady_ramp_s`, the product
+        /// never below 1 (`controller::lead`).
         pub safety: f64,
         /// Least commanded normal force `N_min > 0` \[N\].
         pub n_min_n: f64,
@@ -262,6 +258,41 @@ with_schema! {
         /// slew-limited). Planned into the lead horizon so that a slew-limited actuator
         /// starts early enough; the prior of the slew the controller identifies.
         pub actuator_slew_n_per_s: f64,
+        /// Margins: factors on the model's slip force that a finger's own behaviour calls
+        /// for (docs/controller.md, "Margins"; docs/experiments.md says which protocol
+        /// measures each). The factor on the safety factor that a round patch's
+        /// ([`FingerShape::Disc`]) torsional moment carries \[-\], `≥ 1`: a margin for a
+        /// rim that creeps under a sustained twist (a hemicylinder's is 1).
+        pub disc_torsion_factor: f64,
+        /// The factor on the safety factor while the load cycles \[-\], `≥ 1`: the
+        /// inverse of the share of its static capacity a finger keeps under cyclic load
+        /// without ratcheting ([`lead`](super::lead), "Cyclic loads").
+        pub cyclic_factor: f64,
+        /// The factor on the safety factor once the load has been steady \[-\],
+        /// `0 < x ≤ 1` (the product with `safety` is never below 1). A finger that
+        /// creeps under a sustained load needs `safety·steady_factor` above the inverse of
+        /// the share of its onset it holds ([`lead`](super::lead), "Steady loads").
+        pub steady_factor: f64,
+        /// How long the steady factor takes to fall from 1 to `steady_factor` \[s\], `≥ 0`
+        /// (whole ticks, rounded up, at least one).
+        pub steady_ramp_s: f64,
+        /// The slip margin added on a confirmed incipient slip \[-\], `≥ 0`
+        /// ([`slip`](super::slip)).
+        pub slip_step_incipient: f64,
+        /// The slip margin added on a gross slip \[-\], `≥ 0`.
+        pub slip_step_gross: f64,
+        /// The largest slip margin \[-\], `≥ 1` (the command is capped by `n_max_n` in any
+        /// case).
+        pub slip_margin_max: f64,
+        /// The most slip margin creep alone can ask for \[-\], in `[1, slip_margin_max]`.
+        pub creep_margin_max: f64,
+        /// The lowest friction coefficient a slip can teach, as a fraction of `mu` \[-\],
+        /// `0 < x ≤ 1`.
+        pub mu_floor_fraction: f64,
+        /// The actuator lag assumed when `actuator_lag_s` is 0 ("not told"), until the
+        /// actuator's own samples say otherwise \[s\], `0 ≤ x ≤ 1`: the lead the first rise
+        /// gets.
+        pub untold_lag_s: f64,
     }
 }
 
@@ -302,11 +333,33 @@ impl ControllerConfig {
         aspect_count: 8,
         actuator_lag_s: 0.0,
         actuator_slew_n_per_s: f64::INFINITY,
+        disc_torsion_factor: DISC_TORSION_SAFETY_FACTOR,
+        cyclic_factor: CYCLIC_SAFETY_FACTOR,
+        steady_factor: STEADY_SAFETY_FACTOR,
+        steady_ramp_s: STEADY_RAMP_S,
+        slip_step_incipient: MARGIN_STEP_INCIPIENT,
+        slip_step_gross: MARGIN_STEP_GROSS,
+        slip_margin_max: MARGIN_MAX,
+        creep_margin_max: CREEP_MARGIN_MAX,
+        mu_floor_fraction: MU_FLOOR_FRACTION,
+        untold_lag_s: UNTOLD_LAG_S,
     };
 }
 
 fn positive(param: &'static str, v: f64) -> Result<(), ConfigError> {
     check(param, v, v > 0.0 && v.is_finite(), "a finite number > 0")
+}
+
+fn at_least_one(param: &'static str, v: f64) -> Result<(), ConfigError> {
+    check(param, v, v >= 1.0 && v.is_finite(), "a finite number >= 1")
+}
+
+fn not_negative(param: &'static str, v: f64) -> Result<(), ConfigError> {
+    check(param, v, v >= 0.0 && v.is_finite(), "a finite number >= 0")
+}
+
+fn fraction(param: &'static str, v: f64) -> Result<(), ConfigError> {
+    check(param, v, v > 0.0 && v <= 1.0, "0 < x <= 1")
 }
 
 impl ControllerConfig {
@@ -317,6 +370,7 @@ impl ControllerConfig {
         self.validate_forces()?;
         self.validate_timing()?;
         self.validate_ranges()?;
+        self.validate_margins()?;
         QuadratureOrder::new(usize::from(self.quadrature_order)).map(|_| ())
     }
 
@@ -416,6 +470,40 @@ impl ControllerConfig {
             self.actuator_slew_n_per_s > 0.0,
             "actuator_slew_n_per_s > 0 (inf when not slew-limited)",
         )
+    }
+
+    /// The margins: factors on the safety factor, the slip response's steps and caps, the
+    /// untold actuator's lag \[s\] (docs/controller.md, "Margins").
+    fn validate_margins(&self) -> Result<(), ConfigError> {
+        at_least_one("disc_torsion_factor", self.disc_torsion_factor)?;
+        at_least_one("cyclic_factor", self.cyclic_factor)?;
+        fraction("steady_factor", self.steady_factor)?;
+        not_negative("steady_ramp_s", self.steady_ramp_s)?;
+        not_negative("slip_step_incipient", self.slip_step_incipient)?;
+        not_negative("slip_step_gross", self.slip_step_gross)?;
+        at_least_one("slip_margin_max", self.slip_margin_max)?;
+        check(
+            "creep_margin_max",
+            self.creep_margin_max,
+            self.creep_margin_max >= 1.0 && self.creep_margin_max <= self.slip_margin_max,
+            "1 <= creep_margin_max <= slip_margin_max",
+        )?;
+        fraction("mu_floor_fraction", self.mu_floor_fraction)?;
+        check(
+            "untold_lag_s",
+            self.untold_lag_s,
+            (0.0..=1.0).contains(&self.untold_lag_s),
+            "0 <= untold_lag_s <= 1",
+        )
+    }
+
+    /// The factor on the safety factor that the torsional moment carries in the tick's
+    /// requirement \[-\]: `disc_torsion_factor` on a round patch, 1 on a hemicylinder.
+    pub const fn torsion_factor(&self) -> f64 {
+        match self.shape {
+            FingerShape::Rect => 1.0,
+            FingerShape::Disc => self.disc_torsion_factor,
+        }
     }
 
     /// The core's shape at aspect `l/a` (ignored for the disc).

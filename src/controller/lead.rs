@@ -52,6 +52,7 @@
 //! `N_req/N_slip`) for the lead; a few comparisons for the detectors, and on the ramp's
 //! ticks a conversion and a division. The firmware's budget: docs/firmware-costs.md.
 
+use crate::controller::config::ControllerConfig;
 use crate::real::Real;
 
 /// Time constant of each of the two rate filters \[s\]; the rate lags by about two of
@@ -149,25 +150,28 @@ pub(crate) struct Lead<T> {
 }
 
 impl<T: Real> Lead<T> {
-    /// For a validated configuration's tick period and `μ` (the swing depth's floor is
-    /// [`CYCLE_DEPTH_FLOOR_N`] of load in `N_slip`'s units).
-    pub(crate) fn new(tick_period_s: f64, mu: f64) -> Self {
-        let w = libm::ceil(SWING_WINDOW_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
-        let steady = libm::ceil(STEADY_HOLD_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
-        let ramp = libm::ceil(STEADY_RAMP_S / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
+    /// For a validated configuration: its tick period, `μ` (the swing depth's floor is
+    /// [`CYCLE_DEPTH_FLOOR_N`] of load in `N_slip`'s units), `cyclic_factor`,
+    /// `steady_factor` and `steady_ramp_s`.
+    pub(crate) fn new(config: &ControllerConfig) -> Self {
+        let (tick_period_s, mu) = (config.tick_period_s, config.mu);
+        let ticks = |s: f64| libm::ceil(s / tick_period_s).clamp(1.0, f64::from(u32::MAX / 2));
+        let w = ticks(SWING_WINDOW_S);
+        let steady = ticks(STEADY_HOLD_S);
+        let ramp = ticks(config.steady_ramp_s);
         Self {
             alpha: T::of(tick_period_s / (FILTER_TAU_S + tick_period_s)),
             alpha_per_s: T::of(1.0 / (FILTER_TAU_S + tick_period_s)),
             deadband: T::of(RATE_DEADBAND_N_PER_S),
             window_ticks: w as u64,
             cycle_ticks: 2 * w as u64,
-            cyclic_factor: T::of(CYCLIC_SAFETY_FACTOR),
+            cyclic_factor: T::of(config.cyclic_factor),
             cycle_depth: T::of(CYCLE_DEPTH),
             cycle_floor: T::of(CYCLE_DEPTH_FLOOR_N / mu),
-            steady_factor: T::of(STEADY_SAFETY_FACTOR),
+            steady_factor: T::of(config.steady_factor),
             steady_rise: T::of(STEADY_RISE_N / mu),
             steady_ticks: steady as u64,
-            steady_cut: T::one() - T::of(STEADY_SAFETY_FACTOR),
+            steady_cut: T::one() - T::of(config.steady_factor),
             ramp_ticks: ramp as u64,
             ramp_len: T::of(ramp),
             started: false,

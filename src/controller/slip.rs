@@ -31,6 +31,7 @@
 //! docs/decisions/slip-response-steps.md. Cost per tick: a few comparisons; a division on
 //! a tick that changes `μ̂`.
 
+use crate::controller::config::ControllerConfig;
 use crate::controller::math::{greater, lesser};
 use crate::real::Real;
 use serde::{Deserialize, Serialize};
@@ -103,6 +104,10 @@ pub(crate) struct SlipResponse<T> {
     mu: T,
     inv_mu: T,
     mu_floor: T,
+    step_incipient: T,
+    step_gross: T,
+    margin_max: T,
+    creep_margin_max: T,
     refractory_ticks: u32,
     confirm_ticks: u32,
     lookback_ticks: u32,
@@ -134,12 +139,18 @@ fn ticks_of(seconds: f64, tick_period_s: f64) -> u32 {
 }
 
 impl<T: Real> SlipResponse<T> {
-    /// For the configured `μ` and tick period (both validated).
-    pub(crate) fn new(mu: f64, tick_period_s: f64) -> Self {
+    /// For a validated configuration: its `μ`, tick period, slip steps and caps and `μ`
+    /// floor.
+    pub(crate) fn new(config: &ControllerConfig) -> Self {
+        let (mu, tick_period_s) = (config.mu, config.tick_period_s);
         Self {
             mu: T::of(mu),
             inv_mu: T::of(1.0 / mu),
-            mu_floor: T::of(mu * MU_FLOOR_FRACTION),
+            mu_floor: T::of(mu * config.mu_floor_fraction),
+            step_incipient: T::of(config.slip_step_incipient),
+            step_gross: T::of(config.slip_step_gross),
+            margin_max: T::of(config.slip_margin_max),
+            creep_margin_max: T::of(config.creep_margin_max),
             refractory_ticks: ticks_of(REFRACTORY_S, tick_period_s),
             confirm_ticks: ticks_of(INCIPIENT_CONFIRM_S, tick_period_s),
             lookback_ticks: ticks_of(LOOKBACK_S, tick_period_s),
@@ -242,8 +253,8 @@ impl<T: Real> SlipResponse<T> {
                 }
                 return false;
             }
-            SlipSignal::Incipient => T::of(MARGIN_STEP_INCIPIENT),
-            SlipSignal::Gross => T::of(MARGIN_STEP_GROSS),
+            SlipSignal::Incipient => self.step_incipient,
+            SlipSignal::Gross => self.step_gross,
         };
         let u = greater(self.peak_now, self.peak_before);
         if signal == SlipSignal::Incipient && u < T::of(CREEP_UTILISATION) {
@@ -259,7 +270,7 @@ impl<T: Real> SlipResponse<T> {
         }
         self.since_step = 0;
         self.pristine = false;
-        let margin = lesser(self.margin + step, T::of(MARGIN_MAX));
+        let margin = lesser(self.margin + step, self.margin_max);
         let mut changed = margin > self.margin;
         self.margin = margin;
         // Evidence about μ: a gross slip, or an incipient one that outlasted a first step
@@ -288,7 +299,7 @@ impl<T: Real> SlipResponse<T> {
     /// the creep's ticks count toward that silence's quiet time. (Comparisons, not
     /// `min`/`max`: on the Cortex-M4F those are calls.)
     fn creep(&mut self, step: T) -> bool {
-        let cap = T::of(CREEP_MARGIN_MAX);
+        let cap = self.creep_margin_max;
         self.since_slip = self.since_slip.saturating_add(1);
         if self.margin > cap {
             if self.since_slip >= self.margin_quiet_ticks {

@@ -71,15 +71,22 @@ pub struct TickOutput<T> {
     /// The friction coefficient the controller now believes: the configured `μ` until a
     /// slip signal lowers it (see [`slip`](super::slip)).
     pub mu_estimate: T,
-    /// The margin multiplying the safety factor: 1 until a slip signal raises it (see
-    /// [`slip`](super::slip)), times [`CYCLIC_SAFETY_FACTOR`](super::lead::CYCLIC_SAFETY_FACTOR)
-    /// while the load cycles (see [`lead`](super::lead), "Cyclic loads") or
-    /// a factor that ramps from 1 down to
-    /// [`STEADY_SAFETY_FACTOR`](super::lead::STEADY_SAFETY_FACTOR) over
-    /// [`STEADY_RAMP_S`](super::lead::STEADY_RAMP_S) while it is steady ("Steady loads").
+    /// The margin multiplying the safety factor: the slip response's margin (see
+    /// [`slip`](super::slip)) times the load's factor (`cyclic_factor` while the load
+    /// cycles, a factor ramping from 1 to `steady_factor` while it is steady: see
+    /// [`lead`](super::lead)).
     /// The force asked is `N_req` at the safety factor times this margin, floored at 1:
-    /// never below `N_slip`.
+    /// never below `N_slip`. It is `slip_margin · load_factor`.
     pub margin: T,
+    /// The slip response's part of `margin`: 1 until a slip signal raises it \[-\].
+    pub slip_margin: T,
+    /// The load's part of `margin` \[-\]: `cyclic_factor` while the load cycles, the
+    /// steady factor (ramping from 1 to `steady_factor`) while it is steady, else 1.
+    pub load_factor: T,
+    /// How far the target leads the requirement for the actuator's lag \[N\], `≥ 0`: the
+    /// target is `min(required_n, N_max)` plus this, before the clamp into
+    /// `[N_min, N_max]` and the rate limits (0 on a tick without a good measurement).
+    pub lead_n: T,
 }
 
 /// Frames in a row, each plausibly newer than the one before, that re-anchor the
@@ -219,7 +226,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
     /// `N_req` for a load as the tick asks it of a steady load at safety factor `safety`
     /// (no slip signal, the configured `μ`), without touching the controller's state: the
     /// model's requirement of `(s·f_t, s·β·m_n)`, `β` being
-    /// [`DISC_TORSION_SAFETY_FACTOR`](super::DISC_TORSION_SAFETY_FACTOR) on a round patch
+    /// `disc_torsion_factor` ([`ControllerConfig::torsion_factor`]) on a round patch
     /// and 1 on a hemicylinder (where it is [`Self::required_force`]). Non-finite inputs
     /// give `None`. Cost: one solve.
     pub fn tick_required_force(
@@ -424,6 +431,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             iterations: 0,
             mu_estimate: self.slip_response.mu_estimate(),
             margin: self.margin(),
+            slip_margin: self.slip_response.margin(),
+            load_factor: self.load_factor_and_safety().0,
+            lead_n: T::zero(),
         }
     }
 
@@ -463,8 +473,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         if !stepped {
             self.actuator.observe(self.command, m.normal_force_n);
         }
+        let capped = lesser(req.force_n, self.n_max);
         let ahead = self.lead.target(
-            lesser(req.force_n, self.n_max),
+            capped,
             slip.force_n,
             self.actuator.lag_s(),
             self.actuator.inv_slew(),
@@ -487,6 +498,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             iterations: slip.iterations.saturating_add(req.iterations),
             mu_estimate: self.slip_response.mu_estimate(),
             margin: self.slip_response.margin() * factor,
+            slip_margin: self.slip_response.margin(),
+            load_factor: factor,
+            lead_n: ahead - capped,
         };
         self.last = Some(out);
         out

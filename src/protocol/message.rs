@@ -17,7 +17,7 @@ use crate::ConfigError;
 
 /// The protocol's version. Bump it when the meaning of a message changes without its
 /// encoding changing (the [`SCHEMA_KEY`] follows the encoding by itself).
-pub const PROTOCOL_VERSION: u16 = 4;
+pub const PROTOCOL_VERSION: u16 = 5;
 
 /// Every message, field and type on the wire, in order, plus the frame format. Its
 /// FNV-1a hash is [`SCHEMA_KEY`].
@@ -67,7 +67,7 @@ SensorFrame{seq:u32,timestamp_us:u64,tangential_force_n:[f32;2],torsional_moment
 normal_force_n:f32,slip:SlipSignal};\
 SlipSignal{None,Incipient,Gross};\
 CommandFrame{seq:u32,normal_force_n:f32,n_slip_n:f32,utilisation:f32,status:Status,\
-fault_active:bool,tick_cost:u32,mu_estimate:f32,margin:f32};\
+fault_active:bool,tick_cost:u32,mu_estimate:f32,margin:f32,load_factor:f32,lead_n:f32};\
 Status{Ok,Saturated,SensorFault,StaleInput};\
 Stats{frames_received:u32,crc_errors:u32,decode_errors:u32,overruns:u32,frames_sent:u32,\
 ticks:u32,worst_tick_cost:u32,last_tick_cost:u32,startup_cost:u32,stack_peak_bytes:u32,\
@@ -179,16 +179,18 @@ pub struct CommandFrame {
     pub mu_estimate: f32,
     /// The margin multiplying the safety factor, the controller's
     /// [`TickOutput::margin`](crate::controller::TickOutput::margin): the slip response's
-    /// margin (1 until slip signals raise it, at most
-    /// [`MARGIN_MAX`](crate::controller::slip::MARGIN_MAX)) times the load's factor
-    /// ([`CYCLIC_SAFETY_FACTOR`](crate::controller::lead::CYCLIC_SAFETY_FACTOR) while the
-    /// load cycles; on a contact with no slip to remember, one that eases from 1 down to
-    /// [`STEADY_SAFETY_FACTOR`](crate::controller::lead::STEADY_SAFETY_FACTOR) along a
-    /// steady hold; 1 otherwise). So it lies in `[STEADY_SAFETY_FACTOR, MARGIN_MAX ×
-    /// CYCLIC_SAFETY_FACTOR]`, 0.85 to 4.35, and is below 1 only on a steady hold
-    /// (`tests/load_margin.rs::a_steady_hold_ramps_in_the_steady_factor_after_the_hold_time`
-    /// shows it at 0.85); the force asked is never below `N_slip` whatever the margin.
+    /// margin (1 until slip signals raise it, at most `slip_margin_max`) times
+    /// `load_factor`. So it lies in `[steady_factor, slip_margin_max · cyclic_factor]`
+    /// (0.85 to 4.35 at the defaults;
+    /// `tests/margins.rs::every_tick_reports_the_parts_of_its_command`), and is below 1
+    /// only on a steady hold; the force asked is never below `N_slip` whatever the margin.
     pub margin: f32,
+    /// The load's part of `margin` ([`TickOutput::load_factor`](crate::controller::TickOutput::load_factor)):
+    /// `cyclic_factor` while the load cycles, the steady factor on a steady hold, else 1.
+    pub load_factor: f32,
+    /// How far the target leads the requirement for the actuator's lag \[N\]
+    /// ([`TickOutput::lead_n`](crate::controller::TickOutput::lead_n)).
+    pub lead_n: f32,
 }
 
 /// The unit of the tick costs in [`Stats`]: whatever the device can measure.
@@ -427,6 +429,9 @@ impl<const N: usize> Write for Truncating<'_, N> {
 }
 
 /// Host → device.
+// The core has no heap to box `Configure` in; a request is decoded in place, one at a
+// time, so its size costs one buffer (the firmware's RAM: docs/firmware-costs.md).
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Request {
     /// Opens the session; the device answers [`Reply::Hello`].

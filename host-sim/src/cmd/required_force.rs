@@ -317,7 +317,7 @@ fn exact_force(cfg: &ControllerConfig, ft: f64, mn: f64) -> Result<f64, CliError
     let surface = ExactSurface::new(finger, usize::from(cfg.quadrature_order), 1e-13, 1e-12)
         .map_err(CliError::Failed)?;
     let s = cfg.safety / cfg.mu;
-    let torsion = cfg.shape.torsion_safety_factor();
+    let torsion = cfg.torsion_factor();
     Ok(surface
         .required_in(Rule::Exact, ft * s, mn * s * torsion, 1e-12, 1e12)
         .0)

@@ -342,7 +342,7 @@ pub(crate) fn check_range<T: Real>(
     let scale = cfg.safety / cfg.mu;
     let f = T::of(scale * cfg.force_range_n * core::f64::consts::SQRT_2);
     // The tick scales a round patch's moment once more (`DISC_TORSION_SAFETY_FACTOR`).
-    let m = T::of(scale * cfg.shape.torsion_safety_factor() * cfg.moment_range_nm);
+    let m = T::of(scale * cfg.torsion_factor() * cfg.moment_range_nm);
     let inv0 = at(&cap.inv_arm_per_m, 0);
     let n0 = at(&cap.force_n, 0);
     let y = m * inv0 * n0.max(T::one());

@@ -13,6 +13,13 @@ use crate::error::{BuildError, ConfigError, RangeOverflow};
 use crate::real::{Real, SqrtFn};
 use core::marker::PhantomData;
 
+/// The configuration of the parts of a controller before [`Controller::set_config`]:
+/// `μ` 1, a 1 ms tick, the default margins.
+const UNSET: ControllerConfig = ControllerConfig {
+    mu: 1.0,
+    ..ControllerConfig::DEFAULT
+};
+
 /// The largest plausible step between two good timestamps [µs]: 1 s, or four tick
 /// periods if longer.
 fn max_step_us(tick_period_s: f64) -> u64 {
@@ -130,9 +137,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             force_range: T::zero(),
             moment_range: T::zero(),
             stale_ticks: 1,
-            lead: Lead::new(1e-3, 1.0),
-            actuator: ActuatorId::new(0.0, f64::INFINITY, 1e-3),
-            slip_response: SlipResponse::new(1.0, 1e-3),
+            lead: Lead::new(&UNSET),
+            actuator: ActuatorId::new(&UNSET),
+            slip_response: SlipResponse::new(&UNSET),
             command: T::zero(),
             last: None,
             last_good_us: None,
@@ -198,7 +205,7 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         self.safety = T::of(config.safety);
         self.n_min = T::of(config.n_min_n);
         self.n_max = T::of(config.n_max_n);
-        self.torsion_factor = T::of(config.shape.torsion_safety_factor());
+        self.torsion_factor = T::of(config.torsion_factor());
         self.rise_step = T::of(config.rise_rate_n_per_s * config.tick_period_s);
         self.fall_step = T::of(config.fall_rate_n_per_s * config.tick_period_s);
         self.fault_force = T::of(config.fault_force_n);
@@ -209,13 +216,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
         } else {
             ticks.max(1.0) as u32
         };
-        self.lead = Lead::new(config.tick_period_s, config.mu);
-        self.actuator = ActuatorId::new(
-            config.actuator_lag_s,
-            config.actuator_slew_n_per_s,
-            config.tick_period_s,
-        );
-        self.slip_response = SlipResponse::new(config.mu, config.tick_period_s);
+        self.lead = Lead::new(&config);
+        self.actuator = ActuatorId::new(&config);
+        self.slip_response = SlipResponse::new(&config);
         self.command = T::of(config.n_min_n);
         self.last = None;
         self.last_good_us = None;

@@ -177,7 +177,7 @@ impl FingerRef {
                 // The tick asks for a round patch's moment times its own factor
                 // (`DISC_TORSION_SAFETY_FACTOR`): the exact and ellipse answers it is
                 // measured against are for that requirement.
-                let beta = cfg.shape.torsion_safety_factor();
+                let beta = cfg.torsion_factor();
                 let (big_f, big_m) = (s * ft / cfg.mu, s * beta * mn / cfg.mu);
                 loads.push(Load {
                     fx,

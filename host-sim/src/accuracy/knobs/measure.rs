@@ -151,7 +151,7 @@ pub(super) fn measure_exact(v: &Variant, fingers: &[FingerRef; 2]) -> Result<Mea
         }
         let mut errs = ForceErrors::default();
         // As the tick does, a round patch's moment carries its own factor.
-        let beta = finger.cfg.shape.torsion_safety_factor();
+        let beta = finger.cfg.torsion_factor();
         for load in &fr.loads {
             let o = exact_tick(&surface, load.fx, load.fy, beta * load.mn, load.n_meas);
             errs.add(o.required_n, load, false);

@@ -421,6 +421,8 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             self.command = self.rate_limited(self.fault_target_n());
         }
         let last = self.last;
+        let load_factor = self.load_factor_and_safety().0;
+        let slip_margin = self.slip_response.margin();
         TickOutput {
             command_n: self.command,
             required_n: last.map_or(self.n_min, |o| o.required_n),
@@ -430,9 +432,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             fault_active,
             iterations: 0,
             mu_estimate: self.slip_response.mu_estimate(),
-            margin: self.margin(),
-            slip_margin: self.slip_response.margin(),
-            load_factor: self.load_factor_and_safety().0,
+            margin: slip_margin * load_factor,
+            slip_margin,
+            load_factor,
             lead_n: T::zero(),
         }
     }

@@ -13,13 +13,6 @@ use crate::error::{BuildError, ConfigError, RangeOverflow};
 use crate::real::{Real, SqrtFn};
 use core::marker::PhantomData;
 
-/// The configuration of the parts of a controller before [`Controller::set_config`]:
-/// `μ` 1, a 1 ms tick, the default margins.
-const UNSET: ControllerConfig = ControllerConfig {
-    mu: 1.0,
-    ..ControllerConfig::DEFAULT
-};
-
 /// The largest plausible step between two good timestamps [µs]: 1 s, or four tick
 /// periods if longer.
 fn max_step_us(tick_period_s: f64) -> u64 {
@@ -137,9 +130,9 @@ impl<T: Real, M: TickMath<T>> Controller<T, M> {
             force_range: T::zero(),
             moment_range: T::zero(),
             stale_ticks: 1,
-            lead: Lead::new(&UNSET),
-            actuator: ActuatorId::new(&UNSET),
-            slip_response: SlipResponse::new(&UNSET),
+            lead: Lead::new(&ControllerConfig::DEFAULT),
+            actuator: ActuatorId::new(&ControllerConfig::DEFAULT),
+            slip_response: SlipResponse::new(&ControllerConfig::DEFAULT),
             command: T::zero(),
             last: None,
             last_good_us: None,

@@ -10,7 +10,7 @@ use crate::estimate::{Estimate, Refit};
 use std::fmt::Write;
 
 /// A number as TOML writes it: shortest round-trip, `inf` for infinity.
-fn num(v: f64) -> String {
+pub(crate) fn num(v: f64) -> String {
     if v.is_infinite() {
         if v > 0.0 { "inf" } else { "-inf" }.to_string()
     } else if v == v.trunc() && v.abs() < 1e15 {
@@ -21,7 +21,7 @@ fn num(v: f64) -> String {
 }
 
 /// `v` to 4 significant digits, for people (comments, the text report).
-fn sig4(v: f64) -> String {
+pub(crate) fn sig4(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return num(v);
     }

@@ -13,6 +13,8 @@
 //!   scale (or a long hemicylinder's half-length) refitted to the torsion onsets;
 //! - [`estimate`]: the plain data both make ([`Setup`], [`Estimate`], the refit's record);
 //! - [`interval`] and [`lsq`]: t quantiles, Wald intervals, the least-squares solver;
+//! - [`margin_csv`]: the margin protocols' files (cyclic loads, sustained loads), and
+//!   [`margins`]: the controller's margins fitted to them;
 //! - [`finger_toml`]: the finger TOML and the text report;
 //! - [`error`]: the errors, [`CalibError`].
 //!
@@ -37,6 +39,8 @@ pub mod friction_fit;
 pub mod interval;
 pub mod lab_csv;
 pub mod lsq;
+pub mod margin_csv;
+pub mod margins;
 pub mod surface;
 
 pub use calibration::{calibrate, calibrate_on, grid_for, Calibration};

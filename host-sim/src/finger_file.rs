@@ -5,6 +5,9 @@
 //!   brush finger its plant);
 //! - `[controller]`, if any: the settings a scene gives softgrip, among them the `mu` it
 //!   believes when that differs from the finger's true one ([`FingerFile::believed_mu`]);
+//! - `[margins]`, if any: the controller's margins measured of the finger
+//!   ([`crate::config::margins`]); a command that configures a controller from the file
+//!   puts them over its configuration ([`FingerFile::controller_settings`]);
 //! - `tick_hz`, if any (default 1 kHz);
 //! - `effects` and `[effect.NAME]` tables, if any, read by the commands that need them
 //!   (the true skew of `experiment`).
@@ -38,6 +41,9 @@ pub struct FingerFile {
     /// The effects' settings tables.
     #[serde(default)]
     pub effect: BTreeMap<String, toml::Table>,
+    /// The `[margins]` table (empty when absent).
+    #[serde(default)]
+    pub margins: toml::Table,
 }
 
 fn default_tick_hz() -> f64 {
@@ -60,7 +66,18 @@ impl FingerFile {
         let base = softgrip::controller::ControllerConfig::default();
         crate::config::overlay(&base, &file.controller.config)
             .map_err(|e| CliError::Usage(format!("{flag}: {}: controller.{e}", path.display())))?;
+        crate::config::margins::check(&file.margins)
+            .and_then(|()| crate::config::margins::merged(&file.controller.config, &file.margins))
+            .map_err(|e| CliError::Usage(format!("{flag}: {}: margins.{e}", path.display())))?;
         Ok(file)
+    }
+
+    /// The settings the file gives the controller: its `[controller]` table with the
+    /// `[margins]` keys (which [`FingerFile::load`] checked do not repeat its keys).
+    pub fn controller_settings(&self) -> ControllerSettings {
+        let mut s = self.controller.clone();
+        s.config.extend(self.margins.clone());
+        s
     }
 
     /// The friction coefficient the controller believes: `[controller] mu` if the file

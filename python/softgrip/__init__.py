@@ -178,19 +178,38 @@ def _finger_kwargs(finger: dict[str, Any], skew: Optional[dict[str, Any]]) -> di
     return out
 
 
+# The keys of a finger TOML's [margins] table (docs/calibration.md), Controller keywords.
+_MARGIN_KEYS = ("cyclic_factor", "steady_factor", "steady_ramp_s", "disc_torsion_factor")
+
+
+def _margin_kwargs(doc: dict[str, Any], path: Any) -> dict[str, Any]:
+    """A finger TOML's ``[margins]`` keys as ``Controller`` keywords; another key is
+    refused by name."""
+    margins = doc.get("margins", {})
+    for key in margins:
+        if key not in _MARGIN_KEYS:
+            raise ConfigError(
+                f"{path}: margins.{key}: unknown key, expected one of {', '.join(_MARGIN_KEYS)}"
+            )
+    return {key: float(value) for key, value in margins.items()}
+
+
 def load_finger(path: Union[str, PathLike]) -> dict[str, Any]:
     """The finger of a TOML file (``host-sim calibrate --out``'s, or a scene), as
     ``Controller`` keywords: ``shape`` ("rect": a hemicylinder, "disc": a hemisphere),
     ``k``, ``mu``, ``c_m_per_n_gamma`` (the file's ``c``), ``gamma``, ``half_length_m``
     and, when the file describes a skewed pressure (``[effect.skewed_pressure]``),
-    ``skew``. A scene's ``[controller] mu``, the μ its controller believes, wins over the
-    finger's. ``Controller(**load_finger("finger.toml"), safety=1.3)`` runs it."""
+    ``skew``; the measured margins of its ``[margins]`` table (``cyclic_factor``,
+    ``disc_torsion_factor``; docs/calibration.md). A scene's ``[controller] mu``, the μ
+    its controller believes, wins over the finger's.
+    ``Controller(**load_finger("finger.toml"), safety=1.3)`` runs it."""
     with open(path, "rb") as f:
         doc = tomllib.load(f)
     if "finger" not in doc:
         raise ConfigError(f"{path}: no [finger] table")
     skew = doc.get("effect", {}).get("skewed_pressure")
     out = _finger_kwargs(doc["finger"], skew)
+    out.update(_margin_kwargs(doc, path))
     # A scene's controller may believe another μ than its finger's true one.
     believed = doc.get("controller", {}).get("mu")
     if believed is not None:
@@ -206,6 +225,8 @@ def calibrate(
     half_length_m: float = 0.01,
     conservative: bool = False,
     friction_contact: bool = False,
+    cyclic: Optional[Union[str, PathLike]] = None,
+    hold: Optional[Union[str, PathLike]] = None,
 ) -> dict[str, Any]:
     """Fits the finger's parameters to a lab's files, as ``host-sim calibrate`` (the same
     code: the crate ``softgrip-calibrate``; docs/calibration.md).
@@ -218,11 +239,15 @@ def calibrate(
     grip's capacity. ``friction_contact`` (``--friction-contact``) then takes ``mu`` from
     the pure-force onsets and refits ``c`` (on a long hemicylinder, the half-length) to
     the pure-torsion onsets: exact on pure loads, less so between them (docs/calibration.md);
-    not with ``conservative``.
+    not with ``conservative``. ``cyclic`` and ``hold``, the margin protocols' files
+    (``host-sim experiment cyclic``, ``hold``; docs/experiments.md), add the finger's
+    margins (``--cyclic``, ``--hold``; ``conservative`` takes each factor at its interval's
+    upper end).
 
     Returns ``host-sim calibrate --format json``'s object: each parameter under its TOML
     name (``mu``, ``k``, ``c``, ``gamma``, ``skewed_pressure``) as ``{"value", "ci95",
-    "identified", "reason"}``, plus ``fit``; and ``finger_toml`` (the text ``--out``
+    "identified", "reason"}``, plus ``fit`` and ``margins`` (each ``"not measured"``
+    without its file); and ``finger_toml`` (the text ``--out``
     writes) and ``controller``, the fitted finger as ``Controller`` keywords.
 
     Raises ``ConfigError`` naming ``indentation`` or ``slip`` for a bad file (its message
@@ -235,9 +260,12 @@ def calibrate(
         half_length_m=float(half_length_m),
         conservative=bool(conservative),
         friction_contact=bool(friction_contact),
+        cyclic=None if cyclic is None else str(cyclic),
+        hold=None if hold is None else str(hold),
     )
     r = json.loads(report)
     r["finger_toml"] = toml_text
     doc = tomllib.loads(toml_text)
     r["controller"] = _finger_kwargs(doc["finger"], doc.get("effect", {}).get("skewed_pressure"))
+    r["controller"].update(_margin_kwargs(doc, "finger_toml"))
     return r

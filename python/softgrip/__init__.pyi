@@ -65,6 +65,9 @@ def calibrate(
     half_length_m: float = 0.01,
     conservative: bool = False,
     friction_contact: bool = False,
+    cyclic: Optional[Union[str, "os.PathLike[str]"]] = None,
+    hold: Optional[Union[str, "os.PathLike[str]"]] = None,
 ) -> dict[str, Any]:
-    """Fits mu, k, c, gamma and the skew to lab CSVs, as host-sim calibrate; returns its JSON
-    plus finger_toml and controller (Controller keywords). "rect" is a hemicylinder."""
+    """Fits mu, k, c, gamma and the skew to lab CSVs, and the margins to the cyclic and hold
+    CSVs when given, as host-sim calibrate; returns its JSON plus finger_toml and controller
+    (Controller keywords). "rect" is a hemicylinder."""

@@ -155,4 +155,5 @@ def half_width(c_m_per_n_gamma: float, gamma: float, normal_force_n: float) -> f
 def calibrate(
     indentation: str, slip: str, *, shape: str = "rect", half_length_m: float = 0.01,
     conservative: bool = False, friction_contact: bool = False,
+    cyclic: Optional[str] = None, hold: Optional[str] = None,
 ) -> tuple[str, str]: ...

@@ -4,6 +4,8 @@
 use crate::*;
 use softgrip_calibrate::finger_toml::finger_toml;
 use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
+use softgrip_calibrate::margin_csv::{parse_cyclic, parse_hold};
+use softgrip_calibrate::margins::{fit_cyclic, fit_hold, margins_toml, Margins, Report};
 use softgrip_calibrate::{CalibError, Setup};
 
 /// Largest lab file read [bytes], as `host-sim calibrate`.
@@ -43,9 +45,33 @@ fn calib_err(py: Python<'_>, e: CalibError, ind_name: &str) -> PyErr {
     bad(py, param, e.to_string())
 }
 
-/// Fits the finger to the two lab files; returns `(report JSON, finger TOML)`.
+/// The margins of the margin protocols' files, when given (`cyclic`, `hold`: their
+/// keywords name them in errors).
+fn margins(
+    py: Python<'_>,
+    cyclic: Option<std::path::PathBuf>,
+    hold: Option<std::path::PathBuf>,
+    shape: softgrip::controller::FingerShape,
+) -> PyResult<Margins> {
+    let mut m = Margins::none();
+    if let Some(path) = cyclic {
+        let (name, text) = read(py, "cyclic", &path)?;
+        let rows = parse_cyclic(&name, &text).map_err(|e| bad(py, "cyclic", e.to_string()))?;
+        m.cyclic = fit_cyclic(&name, &rows).map_err(|e| bad(py, "cyclic", e.to_string()))?;
+    }
+    if let Some(path) = hold {
+        let (name, text) = read(py, "hold", &path)?;
+        let rows = parse_hold(&name, &text).map_err(|e| bad(py, "hold", e.to_string()))?;
+        m.hold = fit_hold(&name, &rows, shape).map_err(|e| bad(py, "hold", e.to_string()))?;
+    }
+    Ok(m)
+}
+
+/// Fits the finger to the two lab files, and its margins to the margin protocols' files
+/// when given; returns `(report JSON, finger TOML)`.
 #[pyfunction]
-#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false, friction_contact = false))]
+#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false, friction_contact = false, cyclic = None, hold = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn calibrate(
     py: Python<'_>,
     indentation: std::path::PathBuf,
@@ -54,6 +80,8 @@ pub(crate) fn calibrate(
     half_length_m: f64,
     conservative: bool,
     friction_contact: bool,
+    cyclic: Option<std::path::PathBuf>,
+    hold: Option<std::path::PathBuf>,
 ) -> PyResult<(String, String)> {
     if conservative && friction_contact {
         return Err(bad(
@@ -72,6 +100,7 @@ pub(crate) fn calibrate(
     let (slip_name, slip_text) = read(py, "slip", &slip)?;
     let ind = parse_indentation(&ind_name, &ind_text).map_err(|e| calib_err(py, e, &ind_name))?;
     let onsets = parse_slip(&slip_name, &slip_text).map_err(|e| calib_err(py, e, &ind_name))?;
+    let fitted_margins = margins(py, cyclic, hold, setup.shape)?;
     let fitted = softgrip_calibrate::calibrate(&setup, &ind_name, &ind, &slip_name, &onsets)
         .map_err(|e| calib_err(py, e, &ind_name))?;
     let fitted = if friction_contact {
@@ -81,14 +110,18 @@ pub(crate) fn calibrate(
     } else {
         fitted
     };
-    let cal = if conservative {
-        fitted.conservative()
+    let (cal, m) = if conservative {
+        (fitted.conservative(), fitted_margins.conservative())
     } else {
-        fitted
+        (fitted, fitted_margins)
     };
-    let json = serde_json::to_string(&cal).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let report = Report {
+        calibration: &cal,
+        margins: &m,
+    };
+    let json = serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok((
         json,
-        finger_toml(&cal, &format!("{ind_name} and {slip_name}")),
+        finger_toml(&cal, &format!("{ind_name} and {slip_name}")) + &margins_toml(&m, setup.shape),
     ))
 }

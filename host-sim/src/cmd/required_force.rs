@@ -110,7 +110,7 @@ impl RequiredForceArgs {
                 path.display()
             )));
         }
-        Ok(ControllerConfig {
+        let cfg = ControllerConfig {
             mu: f.believed_mu(),
             shape: g.shape,
             k: g.k,
@@ -118,7 +118,10 @@ impl RequiredForceArgs {
             gamma: g.gamma,
             half_length_m: g.half_length_m,
             ..base
-        })
+        };
+        // The finger's measured margins (its disc_torsion_factor acts here).
+        crate::config::overlay(&cfg, &f.margins)
+            .map_err(|e| CliError::Usage(format!("--finger: {}: margins.{e}", path.display())))
     }
 }
 

@@ -7,6 +7,7 @@
 //! [`ControllerConfig`] is read, and gets its flag ([`flags`]), without an edit.
 
 pub mod flags;
+pub mod margins;
 pub mod names;
 
 use serde::de::{self, Deserializer, Visitor};

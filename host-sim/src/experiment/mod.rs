@@ -7,11 +7,16 @@
 //! - [`fls_rig`]: the plant whose contact is softgrip's exact limit surface;
 //! - [`brush_rig`]: the physical brush finger ([`crate::brush`]), which softgrip does not
 //!   model;
-//! - [`protocol`]: indentation, slip, torsion and combined ramps, and the noise.
+//! - [`protocol`]: indentation, slip, torsion and combined ramps, and the noise;
+//! - [`timed`]: the rig's timed loading ([`timed::TimedRig`]), for the margin protocols
+//!   [`cyclic`] (cyclic loads below the onset) and [`hold`] (sustained loads).
 
 pub mod brush_rig;
+pub mod cyclic;
 pub mod fls_rig;
+pub mod hold;
 pub mod protocol;
+pub mod timed;
 
 pub use fls_rig::{FingerSpec, FlsRig};
 pub use protocol::{Noise, Protocol};

@@ -60,7 +60,8 @@ impl Noise {
         Self::new(0.0, 0.0, 0.0, 0.0, 0)
     }
 
-    fn apply(&mut self, x: f64, additive: f64) -> f64 {
+    /// `x` as recorded, with `additive` the channel's additive deviation.
+    pub(crate) fn apply(&mut self, x: f64, additive: f64) -> f64 {
         let (e1, e2): (f64, f64) = (
             self.rng.sample(StandardNormal),
             self.rng.sample(StandardNormal),

@@ -2,6 +2,7 @@
 //! files (softgrip-calibrate, docs/calibration.md) and reports them, writes the finger
 //! TOML and plots the onsets against the fitted surface.
 
+mod margins;
 mod plot;
 
 use crate::args::shape_parser;
@@ -11,6 +12,7 @@ use clap::{Args, ValueEnum};
 use softgrip::controller::FingerShape;
 use softgrip_calibrate::finger_toml::{finger_toml, report_text};
 use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
+use softgrip_calibrate::margins::{margins_text, margins_toml};
 use softgrip_calibrate::{calibrate, CalibError, Setup};
 use std::path::{Path, PathBuf};
 
@@ -62,6 +64,14 @@ pub struct CalibrateArgs {
     /// Plot the onsets against the fitted surface at several forces, and the residuals.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Cyclic-load CSV (host-sim experiment cyclic): the cyclic share, and cyclic_factor
+    /// in [margins].
+    #[arg(long)]
+    cyclic: Option<PathBuf>,
+    /// Sustained-load CSV (host-sim experiment hold): the hold shares, a disc's
+    /// disc_torsion_factor in [margins] and the least safety·steady_factor.
+    #[arg(long)]
+    hold: Option<PathBuf>,
 }
 
 fn read(path: &Path, flag: &str) -> Result<(String, String), CliError> {
@@ -87,6 +97,7 @@ pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
     let (slip_name, slip_text) = read(&args.slip, "--slip")?;
     let ind = parse_indentation(&ind_name, &ind_text).map_err(calib_error)?;
     let slip = parse_slip(&slip_name, &slip_text).map_err(calib_error)?;
+    let fitted_margins = margins::fit(args.cyclic.as_ref(), args.hold.as_ref(), args.shape)?;
     let setup = Setup {
         shape: args.shape,
         half_length_m: l,
@@ -104,15 +115,18 @@ pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
     } else {
         fitted.clone()
     };
+    let m = if args.conservative {
+        fitted_margins.conservative()
+    } else {
+        fitted_margins
+    };
     match args.format {
-        Format::Text => print!("{}", report_text(&cal)),
-        Format::Json => println!(
-            "{}",
-            serde_json::to_string_pretty(&cal).map_err(|e| CliError::Failed(e.to_string()))?
-        ),
+        Format::Text => print!("{}{}", report_text(&cal), margins_text(&m, args.shape)),
+        Format::Json => println!("{}", margins::json(&cal, &m)?),
     }
     if let Some(out) = &args.out {
-        let toml = finger_toml(&cal, &format!("{ind_name} and {slip_name}"));
+        let toml = finger_toml(&cal, &format!("{ind_name} and {slip_name}"))
+            + &margins_toml(&m, args.shape);
         std::fs::write(out, toml)
             .map_err(|e| CliError::Failed(format!("--out: {}: {e}", out.display())))?;
         eprintln!("wrote {}", out.display());

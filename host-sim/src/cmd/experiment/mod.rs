@@ -3,6 +3,7 @@
 //! it into `--out`.
 
 mod finger;
+mod margins;
 mod plot;
 
 use crate::args::shape_parser;
@@ -28,6 +29,12 @@ pub enum Kind {
     Combined,
     /// indentation.csv, and slip.csv with the onsets of all three ramps.
     All,
+    /// Load cycles below the onset, at one normal force: the slide and turn per cycle
+    /// (cyclic.csv; not part of all).
+    Cyclic,
+    /// Sustained loads below the onset, at one normal force: the creep over each hold
+    /// (hold.csv; not part of all).
+    Hold,
 }
 
 /// The plant the experiments run on.
@@ -122,6 +129,9 @@ pub struct ExperimentArgs {
     /// Output directory (created).
     #[arg(long)]
     out: PathBuf,
+    /// The margin protocols' settings.
+    #[command(flatten)]
+    margins: margins::MarginArgs,
 }
 
 fn usage(msg: impl std::fmt::Display) -> CliError {
@@ -174,6 +184,9 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<PathBuf, CliError> {
 pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
     check_args(args)?;
     let spec = finger::spec(&args.finger)?;
+    if matches!(args.kind, Kind::Cyclic | Kind::Hold) {
+        return margins::run(args, spec);
+    }
     let (lo, hi) = args
         .forces
         .iter()
@@ -206,7 +219,7 @@ pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
         (Protocol::Combined(args.ratios.clone()), "combined"),
     ];
     let chosen: Vec<&(Protocol, &str)> = match args.kind {
-        Kind::Indentation => vec![],
+        Kind::Indentation | Kind::Cyclic | Kind::Hold => vec![],
         Kind::Slip => vec![&kinds[0]],
         Kind::Torsion => vec![&kinds[1]],
         Kind::Combined => vec![&kinds[2]],

@@ -57,8 +57,10 @@ pub struct SimulateArgs {
     #[arg(long)]
     qemu: Option<PathBuf>,
     /// A finger file (`host-sim calibrate --out`'s, or another scene) whose [finger]
-    /// replaces every scene's, and whose [controller] mu, if set, the μ softgrip
-    /// believes. On a limit-surface finger it is the truth and the belief alike.
+    /// replaces every scene's, whose [controller] mu, if set, the μ softgrip believes,
+    /// and whose [margins], if any, softgrip's measured margins (over the scene's
+    /// [controller], under the flags below). On a limit-surface finger it is the truth
+    /// and the belief alike.
     #[arg(long)]
     finger: Option<PathBuf>,
     /// softgrip's configuration over every scene's: `--config FILE` and one flag per
@@ -263,6 +265,10 @@ fn load_scenes(
                 .map_err(|e| CliError::Usage(format!("--finger: {e}")))?,
             None => scene,
         };
+        // The finger file's measured margins over the scene's, under the flags.
+        if let Some(f) = &finger {
+            scene.controller.config.extend(f.margins.clone());
+        }
         scene.controller.config.extend(overrides.clone());
         let shown = short(&p.display().to_string());
         let cfg = check_scene(&scene, names, link)

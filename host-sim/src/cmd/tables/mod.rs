@@ -93,7 +93,7 @@ pub fn config(args: &TablesArgs) -> Result<Checked, CliError> {
         None => (ControllerConfig::default(), None),
         Some(p) => {
             let f = crate::finger_file::FingerFile::load(p, "--finger")?;
-            let cfg = crate::sim::run::scene_config(&f.finger, &f.controller, f.tick_hz)
+            let cfg = crate::sim::run::scene_config(&f.finger, &f.controller_settings(), f.tick_hz)
                 .map_err(|e| usage(format!("--finger: {}: {e}", p.display())))?;
             (cfg, Some((p, f)))
         }

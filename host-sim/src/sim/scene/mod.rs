@@ -89,6 +89,11 @@ pub struct Scene {
     /// Controller settings.
     #[serde(default)]
     pub controller: ControllerSettings,
+    /// The controller's margins measured of the finger (`[margins]`, as a calibrated
+    /// finger TOML has it; [`crate::config::margins`]): [`Scene::parse`] adds them to
+    /// `controller`.
+    #[serde(default)]
+    pub margins: toml::Table,
     /// Settings of each effect, by name, as written (ignored for effects not listed); read
     /// into [`Scene::effect_settings`].
     #[serde(default)]
@@ -243,9 +248,25 @@ impl Scene {
                 None => SceneError(msg),
             }
         })?;
+        scene.take_margins(text)?;
         scene.check(text)?;
         scene.effect_settings = scene.read_effect_settings(text)?;
         Ok(scene)
+    }
+
+    /// Checks `[margins]` and adds its keys to `[controller]` (a key in both is refused),
+    /// each error naming `margins.KEY` and its line.
+    fn take_margins(&mut self, text: &str) -> Result<(), SceneError> {
+        use crate::config::margins::{check, merged};
+        let config = check(&self.margins)
+            .and_then(|()| merged(&self.controller.config, &self.margins))
+            .map_err(|e| {
+                let at = line_of(text, "margins", &e.key)
+                    .map_or(String::new(), |l| format!("line {l}: "));
+                SceneError(format!("{at}margins.{e}"))
+            })?;
+        self.controller.config = config;
+        Ok(())
     }
 
     /// The scene with another finger (`simulate --finger`): `finger` replaces its

@@ -21,12 +21,13 @@
 use crate::contact_fit::{fit_contact, ContactFit};
 use crate::error::CalibError;
 use crate::estimate::FrictionContact;
-pub use crate::estimate::{Estimate, Setup};
+pub use crate::estimate::{Estimate, ResolvedSetup, Setup, SetupSource};
 use crate::friction_fit::{
     fit_joint, FitPlan, JointFit, GAMMA, KAPPA, LN_C, LN_MU, PARAMS, SKEW_SQ,
 };
 use crate::interval::{t975, wald};
 use crate::lab_csv::{Indentation, OnsetKind, SlipOnset};
+use crate::lack_of_fit::{assess, warning, LackOfFit};
 use crate::surface::{SurfaceGrid, MAX_SKEW, SKEW_ALPHA};
 use serde::Serialize;
 use softgrip::controller::{FingerShape, SkewParams};
@@ -70,6 +71,8 @@ pub struct FitSummary {
     pub sigma_ln_utilisation: f64,
     /// Degrees of freedom of the intervals' t quantile.
     pub df: usize,
+    /// Whether the onsets contradict the fit ([`crate::lack_of_fit`]).
+    pub lack_of_fit: LackOfFit,
 }
 
 /// The calibrated finger: every parameter under its finger-TOML name.
@@ -93,6 +96,10 @@ pub struct Calibration {
     pub fit: FitSummary,
     /// Whether [`Calibration::conservative`] moved the values.
     pub conservative: bool,
+    /// What the rows say against the fit: empty, or why its values do not describe the
+    /// finger and the likely cause ([`crate::lack_of_fit`]). The joint fit's, kept by
+    /// [`Calibration::conservative`] and [`Calibration::with_friction_contact`].
+    pub warnings: Vec<String>,
     /// Set when [`Calibration::with_friction_contact`] moved `μ` and `c` or the
     /// half-length to the contact friction sees: what it moved, and the joint fit's.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -336,9 +343,13 @@ fn skew_estimates(
                 held_delta / 2.0
             },
             None,
-            "the rectangle's surface does not depend on it: kept at delta_over_a/2, the \
-             paper's circular locus (0 on the disc)"
-                .into(),
+            if setup.shape == FingerShape::Disc {
+                "the skew is not fitted on the disc: kept at 0, the symmetric profile's"
+            } else {
+                "the rectangle's surface does not depend on it: kept at delta_over_a/2, the \
+                 paper's circular locus"
+            }
+            .into(),
         ),
     }
 }
@@ -399,6 +410,20 @@ fn estimates(
     let var_ln_a = cov(LN_C, LN_C) + 2.0 * x * cov(LN_C, GAMMA) + x * x * cov(GAMMA, GAMMA);
     let ln_a_floor = v[LN_C] + v[GAMMA] * x - t * var_ln_a.max(0.0).sqrt();
     let k = kinds(slip);
+    let p_slip = [LN_MU, KAPPA, SKEW_SQ]
+        .iter()
+        .filter(|&&i| plan.free[i])
+        .count();
+    let lack_of_fit = assess(slip, &fit.slip_residuals, p_slip);
+    let warnings = warning(
+        &lack_of_fit,
+        setup.shape,
+        setup.half_length_m,
+        slip,
+        &fit.slip_residuals,
+    )
+    .into_iter()
+    .collect();
     Calibration {
         shape: setup.shape.name(),
         half_length_m: setup.half_length_m,
@@ -419,8 +444,10 @@ fn estimates(
             sigma_ln_half_width: fit.sigma_indentation,
             sigma_ln_utilisation: fit.sigma_slip,
             df: fit.df,
+            lack_of_fit,
         },
         conservative: false,
+        warnings,
         friction_contact: None,
         contact_floor: (n_min, ln_a_floor),
     }
@@ -453,6 +480,37 @@ impl Calibration {
         }
         out.conservative = true;
         out
+    }
+
+    /// This calibration with its warnings saying which settings of `resolved` were
+    /// neither given nor recorded by the files (only the defaults): with a contradicted
+    /// fit, the likeliest cause.
+    pub fn noting_defaults(mut self, resolved: &ResolvedSetup) -> Self {
+        let mut unsaid = Vec::new();
+        if resolved.shape_from == SetupSource::Default {
+            unsaid.push(format!("the shape ({})", resolved.setup.shape.name()));
+        }
+        if resolved.half_length_from == SetupSource::Default
+            && resolved.setup.shape == FingerShape::Rect
+        {
+            unsaid.push(format!(
+                "the half-length ({} m)",
+                resolved.setup.half_length_m
+            ));
+        }
+        if !unsaid.is_empty() {
+            let (list, verb) = if unsaid.len() == 1 {
+                (unsaid[0].clone(), "is only the default")
+            } else {
+                (unsaid.join(" and "), "are only the defaults")
+            };
+            for w in &mut self.warnings {
+                w.push_str(&format!(
+                    " Neither given nor recorded in the files, {list} {verb}."
+                ));
+            }
+        }
+        self
     }
 
     /// The finger's shape.

@@ -1,5 +1,6 @@
 //! What can go wrong in a calibration, each error naming where: the file, line and column
-//! of a bad value, the expected header, the minimum number of rows.
+//! of a bad value, the expected header, the minimum number of rows, the file whose record
+//! of the rig a setting contradicts.
 
 use std::fmt;
 
@@ -18,10 +19,12 @@ pub enum CalibError {
         /// What is wrong with it.
         message: String,
     },
-    /// A file whose first line is not the expected header.
+    /// A file whose first line (after blank and comment lines) is not the expected header.
     Header {
         /// The file's name.
         file: String,
+        /// Its 1-based line.
+        line: usize,
         /// The header the file must start with.
         expected: &'static str,
         /// The first line it has (shortened).
@@ -36,6 +39,21 @@ pub enum CalibError {
     },
     /// A setting out of its range (the half-length, a parameter of the core).
     Setting(String),
+    /// A setting that contradicts what a lab file records of the rig (`# shape = ...`,
+    /// `# half_length_m = ...`), or two files that record different values.
+    Contradiction {
+        /// The setting: `shape` or `half_length_m`.
+        setting: &'static str,
+        /// The value given.
+        given: String,
+        /// Where it was given: `None` for the caller's setting, else the file that
+        /// records it.
+        given_in: Option<String>,
+        /// The file that records another value.
+        file: String,
+        /// The value it records.
+        recorded: String,
+    },
 }
 
 impl fmt::Display for CalibError {
@@ -49,14 +67,37 @@ impl fmt::Display for CalibError {
             } => write!(f, "{file}:{line}:{column}: {message}"),
             Self::Header {
                 file,
+                line,
                 expected,
                 found,
             } => write!(
                 f,
-                "{file}:1: the header must be `{expected}` (found `{found}`)"
+                "{file}:{line}: the header must be `{expected}` (found `{found}`)"
             ),
             Self::TooFew { file, needed } => write!(f, "{file}: {needed}"),
             Self::Setting(m) => f.write_str(m),
+            Self::Contradiction {
+                setting,
+                given,
+                given_in: None,
+                file,
+                recorded,
+            } => write!(
+                f,
+                "{setting}: {given} was given, but {file} records the rig's {setting} = \
+                 {recorded}: leave the setting out to use the file's, or correct the file"
+            ),
+            Self::Contradiction {
+                setting,
+                given,
+                given_in: Some(first),
+                file,
+                recorded,
+            } => write!(
+                f,
+                "{setting}: {first} records {given}, but {file} records {recorded}: the files \
+                 are of different rigs"
+            ),
         }
     }
 }

@@ -7,6 +7,7 @@
 
 use crate::calibration::Calibration;
 use crate::estimate::{Estimate, Refit};
+use crate::lack_of_fit::{LackOfFit, NoiseSource, MIN_NOISE_DF};
 use std::fmt::Write;
 
 /// A number as TOML writes it: shortest round-trip, `inf` for infinity.
@@ -45,6 +46,17 @@ fn comment(e: &Estimate) -> String {
     }
 }
 
+/// A lab file's name for the finger TOML's heading: relative to the current directory
+/// when it lies under it (so that the heading does not depend on where the lab sits on
+/// the machine), else as given.
+pub fn source_name(path: &std::path::Path) -> String {
+    std::env::current_dir()
+        .ok()
+        .filter(|_| path.is_absolute())
+        .and_then(|cwd| path.strip_prefix(cwd).ok().map(|p| p.display().to_string()))
+        .unwrap_or_else(|| path.display().to_string())
+}
+
 /// The finger TOML of `cal`; `source` (the data's file names) goes into the heading
 /// comment.
 pub fn finger_toml(cal: &Calibration, source: &str) -> String {
@@ -57,6 +69,9 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
         "fitted values"
     };
     let _ = writeln!(s, "# softgrip finger calibrated from {source}: {kind}.");
+    for w in &cal.warnings {
+        let _ = writeln!(s, "# WARNING: {w}");
+    }
     if let Some(fc) = &cal.friction_contact {
         let _ = writeln!(s, "# {}.", fc.describe(cal.half_length_m, sig4));
     }
@@ -110,7 +125,8 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
 
 /// The calibration for people: one line per parameter, value and interval to 4
 /// significant digits, and for a held one "not identified: kept at X (conservative)" with
-/// the reason.
+/// the reason; then the fit's residuals and its lack-of-fit test
+/// ([`crate::lack_of_fit`]).
 pub fn report_text(cal: &Calibration) -> String {
     let mut s = String::new();
     let sp = &cal.skewed_pressure;
@@ -125,7 +141,7 @@ pub fn report_text(cal: &Calibration) -> String {
     ];
     for (name, e) in rows {
         let ci = e.ci95.map_or(String::new(), |[lo, hi]| {
-            format!("  95 % [{}, {}]", num(lo), num(hi))
+            format!("  95 % [{}, {}]", sig4(lo), sig4(hi))
         });
         match &e.reason {
             None => {
@@ -152,10 +168,40 @@ pub fn report_text(cal: &Calibration) -> String {
             ""
         }
     );
+    let _ = writeln!(s, "{}", lack_of_fit_line(&f.lack_of_fit));
     if let Some(fc) = &cal.friction_contact {
         let _ = writeln!(s, "{}", fc.describe(cal.half_length_m, sig4));
     }
     s
+}
+
+/// The lack-of-fit test's line of the text report.
+fn lack_of_fit_line(l: &LackOfFit) -> String {
+    let from = match l.noise_from {
+        NoiseSource::Repeats => "their repeats",
+        NoiseSource::PureForceOnsets => "the pure-force onsets' scatter",
+        NoiseSource::None => {
+            return format!(
+                "lack of fit: not tested (RMS of ln u {}): neither repeated onsets nor \
+                 pure-force onsets give the noise {MIN_NOISE_DF} degrees of freedom",
+                sig4(l.rms_ln_utilisation)
+            )
+        }
+    };
+    let [d1, d2] = l.f_df;
+    format!(
+        "lack of fit: RMS of ln u {} against a noise of {} from {from} (F {} on {d1} and {d2} \
+         degrees of freedom, p {}): {}",
+        sig4(l.rms_ln_utilisation),
+        sig4(l.noise_sd.unwrap_or(0.0)),
+        l.f_ratio.map_or("inf".to_string(), sig4),
+        l.p_value.map_or("-".to_string(), |p| format!("{p:.2e}")),
+        if l.contradicted {
+            "the rows contradict the fit (see the warning)"
+        } else {
+            "consistent with the rows"
+        }
+    )
 }
 
 #[cfg(test)]

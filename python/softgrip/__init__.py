@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import tomllib
+import warnings
 from os import PathLike
 from typing import Any, Optional, Union
 
@@ -23,6 +24,7 @@ from ._softgrip import CONFIG_FIELDS, ConfigError, Controller, TickStatus
 
 __all__ = [
     "CONFIG_FIELDS",
+    "CalibrationWarning",
     "calibrate",
     "load_finger",
     "ConfigError",
@@ -217,12 +219,17 @@ def load_finger(path: Union[str, PathLike]) -> dict[str, Any]:
     return out
 
 
+class CalibrationWarning(UserWarning):
+    """A calibration whose rows contradict its fit (docs/calibration.md, "A fit the rows
+    contradict"): its values do not describe the finger; the text names the likely cause."""
+
+
 def calibrate(
     indentation: Union[str, PathLike],
     slip: Union[str, PathLike],
     *,
-    shape: str = "rect",
-    half_length_m: float = 0.01,
+    shape: Optional[str] = None,
+    half_length_m: Optional[float] = None,
     conservative: bool = False,
     friction_contact: bool = False,
     cyclic: Optional[Union[str, PathLike]] = None,
@@ -234,7 +241,9 @@ def calibrate(
     ``indentation``: a CSV ``normal_force_n,half_width_m``; ``slip``: a CSV
     ``normal_force_n,tangential_force_n,torsional_moment_nm``, one row per slip onset
     (docs/experiments.md). ``shape`` "rect" (a hemicylinder) or "disc" (a hemisphere);
-    ``half_length_m`` the hemicylinder's half-length l [m] (measured, not fitted);
+    ``half_length_m`` the hemicylinder's half-length l [m] (measured, not fitted); each
+    defaults to what the files record of the rig (``# shape = ...``, ``# half_length_m =
+    ...``), else "rect" and 0.01, and one that contradicts the files is refused;
     ``conservative`` moves every parameter to the end of its 95 % interval that lowers the
     grip's capacity. ``friction_contact`` (``--friction-contact``) then takes ``mu`` from
     the pure-force onsets and refits ``c`` (on a long hemicylinder, the half-length) to
@@ -251,13 +260,16 @@ def calibrate(
     writes) and ``controller``, the fitted finger as ``Controller`` keywords.
 
     Raises ``ConfigError`` naming ``indentation`` or ``slip`` for a bad file (its message
-    gives file:line:column) or too few rows (it states the minimum).
+    gives file:line:column) or too few rows (it states the minimum), ``shape`` or
+    ``half_length_m`` for one that contradicts the files (naming both values). Warns with
+    ``CalibrationWarning`` when the rows contradict the fit; the report's ``warnings``
+    lists the same texts, and ``fit["lack_of_fit"]`` the test's figures.
     """
     report, toml_text = _softgrip.calibrate(
         str(indentation),
         str(slip),
-        shape=str(shape),
-        half_length_m=float(half_length_m),
+        shape=None if shape is None else str(shape),
+        half_length_m=None if half_length_m is None else float(half_length_m),
         conservative=bool(conservative),
         friction_contact=bool(friction_contact),
         cyclic=None if cyclic is None else str(cyclic),
@@ -268,4 +280,6 @@ def calibrate(
     doc = tomllib.loads(toml_text)
     r["controller"] = _finger_kwargs(doc["finger"], doc.get("effect", {}).get("skewed_pressure"))
     r["controller"].update(_margin_kwargs(doc, "finger_toml"))
+    for text in r["warnings"]:
+        warnings.warn(text, CalibrationWarning, stacklevel=2)
     return r

@@ -57,12 +57,15 @@ def required_force(
 def load_finger(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
     """A finger TOML (calibrate's --out, or a scene) as Controller keywords."""
 
+class CalibrationWarning(UserWarning):
+    """A calibration whose rows contradict its fit; the text names the likely cause."""
+
 def calibrate(
     indentation: Union[str, "os.PathLike[str]"],
     slip: Union[str, "os.PathLike[str]"],
     *,
-    shape: Literal["rect", "disc"] = "rect",
-    half_length_m: float = 0.01,
+    shape: Optional[Literal["rect", "disc"]] = None,
+    half_length_m: Optional[float] = None,
     conservative: bool = False,
     friction_contact: bool = False,
     cyclic: Optional[Union[str, "os.PathLike[str]"]] = None,

@@ -2,8 +2,8 @@
 //! `host-sim calibrate` (the crate `softgrip-calibrate`).
 
 use crate::*;
-use softgrip_calibrate::finger_toml::finger_toml;
-use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
+use softgrip_calibrate::finger_toml::{finger_toml, source_name};
+use softgrip_calibrate::lab_csv::{read_indentation, read_slip};
 use softgrip_calibrate::margin_csv::{parse_cyclic, parse_hold};
 use softgrip_calibrate::margins::{fit_cyclic, fit_hold, margins_toml, Margins, Report};
 use softgrip_calibrate::{CalibError, Setup};
@@ -41,6 +41,7 @@ fn calib_err(py: Python<'_>, e: CalibError, ind_name: &str) -> PyErr {
             }
         }
         CalibError::Setting(_) => "half_length_m",
+        CalibError::Contradiction { setting, .. } => setting,
     };
     bad(py, param, e.to_string())
 }
@@ -70,14 +71,14 @@ fn margins(
 /// Fits the finger to the two lab files, and its margins to the margin protocols' files
 /// when given; returns `(report JSON, finger TOML)`.
 #[pyfunction]
-#[pyo3(signature = (indentation, slip, *, shape = "rect", half_length_m = 0.01, conservative = false, friction_contact = false, cyclic = None, hold = None))]
+#[pyo3(signature = (indentation, slip, *, shape = None, half_length_m = None, conservative = false, friction_contact = false, cyclic = None, hold = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn calibrate(
     py: Python<'_>,
     indentation: std::path::PathBuf,
     slip: std::path::PathBuf,
-    shape: &str,
-    half_length_m: f64,
+    shape: Option<&str>,
+    half_length_m: Option<f64>,
     conservative: bool,
     friction_contact: bool,
     cyclic: Option<std::path::PathBuf>,
@@ -92,17 +93,26 @@ pub(crate) fn calibrate(
                 .to_string(),
         ));
     }
-    let setup = Setup {
-        shape: shape_of(py, shape)?,
-        half_length_m: finite(py, "half_length_m", half_length_m)?,
-    };
+    let shape = shape.map(|s| shape_of(py, s)).transpose()?;
+    let half_length_m = half_length_m
+        .map(|l| finite(py, "half_length_m", l))
+        .transpose()?;
     let (ind_name, ind_text) = read(py, "indentation", &indentation)?;
     let (slip_name, slip_text) = read(py, "slip", &slip)?;
-    let ind = parse_indentation(&ind_name, &ind_text).map_err(|e| calib_err(py, e, &ind_name))?;
-    let onsets = parse_slip(&slip_name, &slip_text).map_err(|e| calib_err(py, e, &ind_name))?;
+    let err = |e| calib_err(py, e, &ind_name);
+    let (ind, ind_rig) = read_indentation(&ind_name, &ind_text).map_err(err)?;
+    let (onsets, slip_rig) = read_slip(&slip_name, &slip_text).map_err(err)?;
+    let resolved = Setup::resolve(
+        shape,
+        half_length_m,
+        &[(&ind_name, ind_rig), (&slip_name, slip_rig)],
+    )
+    .map_err(err)?;
+    let setup = resolved.setup;
     let fitted_margins = margins(py, cyclic, hold, setup.shape)?;
     let fitted = softgrip_calibrate::calibrate(&setup, &ind_name, &ind, &slip_name, &onsets)
-        .map_err(|e| calib_err(py, e, &ind_name))?;
+        .map_err(err)?
+        .noting_defaults(&resolved);
     let fitted = if friction_contact {
         fitted
             .with_friction_contact(&slip_name, &onsets)
@@ -119,9 +129,10 @@ pub(crate) fn calibrate(
         calibration: &cal,
         margins: &m,
     };
+    let heading = format!("{} and {}", source_name(&indentation), source_name(&slip));
     let json = serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok((
         json,
-        finger_toml(&cal, &format!("{ind_name} and {slip_name}")) + &margins_toml(&m, setup.shape),
+        finger_toml(&cal, &heading) + &margins_toml(&m, setup.shape),
     ))
 }

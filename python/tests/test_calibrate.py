@@ -5,6 +5,7 @@ import csv
 import json
 import math
 import subprocess
+import warnings
 
 import pytest
 
@@ -68,7 +69,8 @@ def test_friction_contact_equals_the_cli(host_sim, lab):
     assert got["half_length_m"] == 0.01
     assert "friction_contact" not in fit
     with open(lab / "slip.csv") as f:
-        torsion = [r for r in csv.DictReader(f) if float(r["tangential_force_n"]) == 0.0]
+        rows = csv.DictReader(line for line in f if not line.startswith("#"))
+        torsion = [r for r in rows if float(r["tangential_force_n"]) == 0.0]
     n = [float(r["normal_force_n"]) for r in torsion]
     m = [float(r["torsional_moment_nm"]) for r in torsion]
     kw = dict(got["controller"], safety=1.0, mode="table")
@@ -112,3 +114,53 @@ def test_load_finger_reads_a_scene_with_the_believed_mu():
     assert f["mu"] != 0.8  # the brush's true static μ is not what softgrip believes
     assert f["shape"] == "rect" and f["k"] == 1.0
     softgrip.Controller(**f)
+
+
+def test_the_files_record_the_rig_and_a_contradicting_keyword_is_refused(lab, monkeypatch):
+    text = (lab / "slip.csv").read_text()
+    assert "# shape = rect\n# half_length_m = 0.01\n" in text
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", shape="disc")
+    assert e.value.param == "shape"
+    assert "disc" in str(e.value) and "shape = rect" in str(e.value), str(e.value)
+    with pytest.raises(softgrip.ConfigError) as e:
+        softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", half_length_m=0.02)
+    assert e.value.param == "half_length_m"
+    assert "0.02" in str(e.value) and "half_length_m = 0.01" in str(e.value), str(e.value)
+    # Values that agree with the record are taken; the finger TOML's heading names the
+    # files relative to the current directory, as they would be typed there.
+    monkeypatch.chdir(lab)
+    fit = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", shape="rect",
+                             half_length_m=0.01)
+    assert fit["shape"] == "rect" and fit["half_length_m"] == 0.01
+    heading = fit["finger_toml"].splitlines()[0]
+    assert heading.startswith("# softgrip finger calibrated from indentation.csv and slip.csv:")
+
+
+def test_a_hemisphere_calibrated_as_a_rectangle_warns(host_sim, tmp_path):
+    # Rows of a hemisphere, without the lines that record its shape (an older lab's
+    # files): calibrated with the default shape, a rectangle, the rows contradict the
+    # fit; as a disc they do not (docs/calibration.md, "A fit the rows contradict").
+    subprocess.run(
+        [host_sim, "experiment", "all", "--shape", "disc", "--mu", "0.6", "--c", "3e-3",
+         "--gamma", "0.33", "--noise", "0.02", "--seed", "2", "--out", tmp_path],
+        check=True, capture_output=True,
+    )
+    for name in ("indentation.csv", "slip.csv"):
+        lines = (tmp_path / name).read_text().splitlines(keepends=True)
+        assert lines[1] == "# shape = disc\n"
+        (tmp_path / f"old-{name}").write_text("".join(l for l in lines if l[0] != "#"))
+    ind, slip = tmp_path / "old-indentation.csv", tmp_path / "old-slip.csv"
+    with pytest.warns(softgrip.CalibrationWarning, match="hemisphere") as caught:
+        rect = softgrip.calibrate(ind, slip)
+    assert rect["shape"] == "rect" and rect["fit"]["lack_of_fit"]["contradicted"]
+    assert [str(w.message) for w in caught] == rect["warnings"]
+    assert "only the defaults" in rect["warnings"][0]
+    assert rect["finger_toml"].splitlines()[1].startswith("# WARNING: the rows contradict")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        disc = softgrip.calibrate(ind, slip, shape="disc")
+        recorded = softgrip.calibrate(tmp_path / "indentation.csv", tmp_path / "slip.csv")
+    assert disc["warnings"] == [] and not disc["fit"]["lack_of_fit"]["contradicted"]
+    assert recorded["shape"] == "disc" and recorded["mu"] == disc["mu"]
+    assert disc["mu"]["ci95"][0] <= 0.6 <= disc["mu"]["ci95"][1]

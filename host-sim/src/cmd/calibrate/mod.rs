@@ -10,10 +10,10 @@ use crate::input::{read_capped_text, short_num};
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use softgrip::controller::FingerShape;
-use softgrip_calibrate::finger_toml::{finger_toml, report_text};
-use softgrip_calibrate::lab_csv::{parse_indentation, parse_slip};
+use softgrip_calibrate::finger_toml::{finger_toml, report_text, source_name};
+use softgrip_calibrate::lab_csv::{read_indentation, read_slip, Indentation, SlipOnset};
 use softgrip_calibrate::margins::{margins_text, margins_toml};
-use softgrip_calibrate::{calibrate, CalibError, Setup};
+use softgrip_calibrate::{calibrate, CalibError, ResolvedSetup, Setup};
 use std::path::{Path, PathBuf};
 
 /// Largest lab file \[bytes\] (a million rows of three numbers is about 40 MiB).
@@ -38,12 +38,16 @@ pub struct CalibrateArgs {
     /// Slip-onset CSV (normal_force_n,tangential_force_n,torsional_moment_nm).
     #[arg(long)]
     slip: PathBuf,
-    /// Finger shape.
-    #[arg(long, value_parser = shape_parser(), default_value = "rect")]
-    shape: FingerShape,
-    /// Half-length l of the rectangular patch [m] (measured, not fitted).
-    #[arg(long, default_value_t = 0.01)]
-    half_length: f64,
+    /// Finger shape [default: the one the files record (`# shape = ...`), else rect]; one
+    /// that contradicts the files' is refused.
+    #[arg(long, value_parser = shape_parser())]
+    shape: Option<FingerShape>,
+    // host-sim/tests/calibrate_contradiction.rs::the_files_record_the_rig_and_a_contradicting_flag_is_refused
+    /// Half-length l of the rectangular patch [m] (measured, not fitted) [default: the one
+    /// the files record (`# half_length_m = ...`), else 0.01]; one that contradicts the
+    /// files' is refused.
+    #[arg(long)]
+    half_length: Option<f64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
@@ -80,14 +84,40 @@ fn read(path: &Path, flag: &str) -> Result<(String, String), CliError> {
     Ok((path.display().to_string(), text))
 }
 
+/// A calibration error as the CLI says it: a setting that contradicts a file by its flag.
 fn calib_error(e: CalibError) -> CliError {
-    CliError::Usage(e.to_string())
+    match e {
+        CalibError::Contradiction {
+            setting,
+            given,
+            given_in: None,
+            file,
+            recorded,
+        } => {
+            let flag = if setting == "shape" {
+                "--shape"
+            } else {
+                "--half-length"
+            };
+            CliError::Usage(format!(
+                "{flag} {given} contradicts {file}, which records the rig's {setting} = \
+                 {recorded}: leave {flag} out to use the file's, or correct the file"
+            ))
+        }
+        e => CliError::Usage(e.to_string()),
+    }
 }
 
-/// Runs the calibration.
-pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
-    let l = args.half_length;
-    if !(l > 0.0 && l.is_finite()) {
+/// The lab files' names and rows, and the setup: the flags', else the files' record of
+/// the rig, else the default.
+type Lab = (
+    (String, Vec<Indentation>),
+    (String, Vec<SlipOnset>),
+    ResolvedSetup,
+);
+
+fn lab(args: &CalibrateArgs) -> Result<Lab, CliError> {
+    if let Some(l) = args.half_length.filter(|l| !(*l > 0.0 && l.is_finite())) {
         return Err(CliError::Usage(format!(
             "--half-length: {} must be a finite length > 0 [m]",
             short_num(l)
@@ -95,14 +125,25 @@ pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
     }
     let (ind_name, ind_text) = read(&args.indentation, "--indentation")?;
     let (slip_name, slip_text) = read(&args.slip, "--slip")?;
-    let ind = parse_indentation(&ind_name, &ind_text).map_err(calib_error)?;
-    let slip = parse_slip(&slip_name, &slip_text).map_err(calib_error)?;
-    let fitted_margins = margins::fit(args.cyclic.as_ref(), args.hold.as_ref(), args.shape)?;
-    let setup = Setup {
-        shape: args.shape,
-        half_length_m: l,
-    };
-    let joint = calibrate(&setup, &ind_name, &ind, &slip_name, &slip).map_err(calib_error)?;
+    let (ind, ind_rig) = read_indentation(&ind_name, &ind_text).map_err(calib_error)?;
+    let (slip, slip_rig) = read_slip(&slip_name, &slip_text).map_err(calib_error)?;
+    let resolved = Setup::resolve(
+        args.shape,
+        args.half_length,
+        &[(&ind_name, ind_rig), (&slip_name, slip_rig)],
+    )
+    .map_err(calib_error)?;
+    Ok(((ind_name, ind), (slip_name, slip), resolved))
+}
+
+/// Runs the calibration.
+pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
+    let ((ind_name, ind), (slip_name, slip), resolved) = lab(args)?;
+    let shape = resolved.setup.shape;
+    let fitted_margins = margins::fit(args.cyclic.as_ref(), args.hold.as_ref(), shape)?;
+    let joint = calibrate(&resolved.setup, &ind_name, &ind, &slip_name, &slip)
+        .map_err(calib_error)?
+        .noting_defaults(&resolved);
     let fitted = if args.friction_contact {
         joint
             .with_friction_contact(&slip_name, &slip)
@@ -120,13 +161,20 @@ pub fn run(args: &CalibrateArgs) -> Result<(), CliError> {
     } else {
         fitted_margins
     };
+    for w in &cal.warnings {
+        eprintln!("warning: {w}");
+    }
     match args.format {
-        Format::Text => print!("{}{}", report_text(&cal), margins_text(&m, args.shape)),
+        Format::Text => print!("{}{}", report_text(&cal), margins_text(&m, shape)),
         Format::Json => println!("{}", margins::json(&cal, &m)?),
     }
     if let Some(out) = &args.out {
-        let toml = finger_toml(&cal, &format!("{ind_name} and {slip_name}"))
-            + &margins_toml(&m, args.shape);
+        let heading = format!(
+            "{} and {}",
+            source_name(&args.indentation),
+            source_name(&args.slip)
+        );
+        let toml = finger_toml(&cal, &heading) + &margins_toml(&m, shape);
         std::fs::write(out, toml)
             .map_err(|e| CliError::Failed(format!("--out: {}: {e}", out.display())))?;
         eprintln!("wrote {}", out.display());

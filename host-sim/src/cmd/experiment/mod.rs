@@ -13,7 +13,7 @@ use crate::input::short_num;
 use crate::CliError;
 use clap::{Args, ValueEnum};
 use softgrip::controller::FingerShape;
-use softgrip_calibrate::lab_csv::{write_indentation, write_slip};
+use softgrip_calibrate::lab_csv::{write_indentation_on, write_slip_on, RigRecord};
 use std::path::{Path, PathBuf};
 
 /// Which experiment.
@@ -210,7 +210,8 @@ pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
     let mut written = Vec::new();
     if matches!(args.kind, Kind::Indentation | Kind::All) {
         let rows = protocol::indentation(rig.as_ref(), f, r, &mut noise);
-        written.push(write(out, "indentation.csv", &write_indentation(&rows))?);
+        let text = write_indentation_on(&RigRecord::of(spec.shape, spec.half_length_m), &rows);
+        written.push(write(out, "indentation.csv", &text)?);
         written.push(plot::indentation(&out.join("indentation.svg"), &rows)?);
     }
     let kinds: &[(Protocol, &str)] = &[
@@ -235,7 +236,8 @@ pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
         } else {
             chosen[0].1
         };
-        written.push(write(out, &format!("{name}.csv"), &write_slip(&rows))?);
+        let text = write_slip_on(&RigRecord::of(spec.shape, spec.half_length_m), &rows);
+        written.push(write(out, &format!("{name}.csv"), &text)?);
         written.push(plot::onsets(&out.join(format!("{name}.svg")), &rows)?);
     }
     for p in written {

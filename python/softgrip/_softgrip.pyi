@@ -134,6 +134,13 @@ class Controller:
     @property
     def margin(self) -> float: ...
     @property
+    def actuator_lag_estimate_s(self) -> float:
+        """The actuator's lag identified online [s] (0: ideal, or none seen yet)."""
+    @property
+    def actuator_slew_estimate_n_per_s(self) -> float:
+        """The actuator's slew identified online [N/s] (the configured one, inf when not
+        given, until a slew-limited tick is seen)."""
+    @property
     def time_rejections(self) -> int: ...
     @property
     def config(self) -> dict[str, Any]: ...
@@ -153,7 +160,8 @@ def required_force(
 def default_config() -> dict[str, Any]: ...
 def half_width(c_m_per_n_gamma: float, gamma: float, normal_force_n: float) -> float: ...
 def calibrate(
-    indentation: str, slip: str, *, shape: str = "rect", half_length_m: float = 0.01,
+    indentation: str, slip: str, *, shape: Optional[str] = None,
+    half_length_m: Optional[float] = None,
     conservative: bool = False, friction_contact: bool = False,
     cyclic: Optional[str] = None, hold: Optional[str] = None,
 ) -> tuple[str, str]: ...

@@ -273,6 +273,20 @@ impl Controller {
         self.inner.margin()
     }
 
+    /// The actuator's lag the controller has identified [s] (0: an ideal actuator, or
+    /// none seen yet); `config["actuator_lag_s"]` is the one it was told.
+    #[getter]
+    fn actuator_lag_estimate_s(&self) -> f64 {
+        self.inner.actuator_lag_estimate_s()
+    }
+
+    /// The actuator's slew the controller has identified [N/s] (the configured one, inf
+    /// when not given, until a slew-limited tick is seen).
+    #[getter]
+    fn actuator_slew_estimate_n_per_s(&self) -> f64 {
+        self.inner.actuator_slew_estimate_n_per_s()
+    }
+
     #[getter]
     fn time_rejections(&self) -> u32 {
         self.inner.time_rejections()

@@ -159,3 +159,28 @@ def test_a_round_patchs_moment_carries_its_own_factor():
     assert c.required_force(1.0, 0.004, 1.0) > c.slip_force(1.0, 0.004)
     assert c.required_force(1.0, 0.0, 1.0) == c.slip_force(1.0, 0.0)
 
+
+
+def test_the_identified_actuator_is_exposed():
+    # A first-order lag of 30 ms between the command and the grip, through a load that
+    # rises at 40 N/s to 4 N and falls again: the lag is identified from the told 0 (the
+    # untold prior) and from a told 60 ms alike (tests/actuator_id.rs holds the method).
+    tau = 0.03
+    for told in (0.0, 0.06):
+        c = softgrip.Controller(actuator_lag_s=told, mode="table")
+        if told:
+            assert c.actuator_lag_estimate_s == told
+        assert math.isinf(c.actuator_slew_estimate_n_per_s)
+        n, t = c.command_n, 0.0
+        for _ in range(1500):
+            t += DT
+            ft = min(4.0, 40.0 * t) if t < 0.6 else max(0.5, 4.0 - 40.0 * (t - 0.6))
+            cmd, _ = c.tick(ft, 0.0, t, normal_force=n)
+            n += (cmd - n) * DT / tau
+        assert c.actuator_lag_estimate_s == pytest.approx(tau, rel=0.15), told
+        assert c.config["actuator_lag_s"] == told
+    # A told slew is the estimate until a slew-limited tick is seen; both are read-only.
+    c = softgrip.Controller(actuator_slew_n_per_s=100.0)
+    assert c.actuator_slew_estimate_n_per_s == 100.0
+    with pytest.raises(AttributeError):
+        c.actuator_lag_estimate_s = 0.1

@@ -68,7 +68,7 @@ fn simulate_under(scene: &Path, out: &Path, limit_kib: u64) -> bool {
 }
 
 /// The memory ceiling: find the least address space (to 2 MiB) in which a 10 s scene
-/// (10 000 ticks) runs, then run a 1 000 s scene (10⁶ ticks, 100 times longer, a 217 MB
+/// (10 000 ticks) runs, then run a 1 000 s scene (10⁶ ticks, 100 times longer, a 257 MB
 /// CSV) under that ceiling plus 8 MiB. Before streaming, `simulate` reserved 136 bytes a
 /// tick up front (136 MB here, 13.6 GB at the 1e8-tick cap) and copied the samples for
 /// the plots, so the long scene failed under this ceiling.
@@ -120,7 +120,7 @@ fn a_100_times_longer_scene_runs_under_the_same_memory_ceiling() {
         ok,
         "10 s needs {hi} KiB; 1000 s fails under {ceiling} KiB (CSV {csv:?} bytes)"
     );
-    // Every tick reached the CSV: a header and 10⁶ rows of about 217 bytes.
+    // Every tick reached the CSV: a header and 10⁶ rows of about 257 bytes.
     assert!(csv.is_some_and(|n| n > 100_000_000), "{csv:?}");
 }
 

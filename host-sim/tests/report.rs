@@ -66,6 +66,7 @@ fn samples(n: usize, phase: f64) -> Vec<Sample> {
                 slip_distance_m: if slipping { 1e-4 * i as f64 } else { 0.0 },
                 slip_rotation_rad: 0.0,
                 status: if i % 2 == 0 { "ok" } else { "saturated" },
+                ..unexplained()
             };
             match i % 50 {
                 11 => s.f_norm = f64::INFINITY,
@@ -78,6 +79,64 @@ fn samples(n: usize, phase: f64) -> Vec<Sample> {
             s
         })
         .collect()
+}
+
+/// A baseline's sample: no command parts (all NaN), the rest zero.
+fn unexplained() -> Sample {
+    Sample {
+        t_s: 0.0,
+        ft_n: 0.0,
+        mn_nm: 0.0,
+        ft_meas_n: 0.0,
+        mn_meas_nm: 0.0,
+        n_cmd_n: 0.0,
+        n_true_n: 0.0,
+        a_true_m: 0.0,
+        f_norm: 0.0,
+        m_norm: 0.0,
+        pitch: 1.0,
+        utilisation: 0.0,
+        slipping: false,
+        slip_distance_m: 0.0,
+        slip_rotation_rad: 0.0,
+        status: "none",
+        n_slip_n: f32::NAN,
+        required_n: f32::NAN,
+        mu_hat: f32::NAN,
+        margin: f32::NAN,
+        slip_margin: f32::NAN,
+        load_factor: f32::NAN,
+        lead_n: f32::NAN,
+        n_slip_mu_n: f32::NAN,
+        n_safety_n: f32::NAN,
+        n_load_n: f32::NAN,
+    }
+}
+
+/// `samples(n, phase)` with softgrip's command parts: `N_slip` of 2 N, the safety factor's
+/// level 2.7 N, a load factor of 0.85 for the first third (a steady hold), 1 for the
+/// second, 1.45 for the last (a shake, with a slip margin of 1.2 and `μ̂` lowered), and a
+/// lead of 0.1 N.
+fn explained(n: usize, phase: f64) -> Vec<Sample> {
+    let mut v = samples(n, phase);
+    for (i, s) in v.iter_mut().enumerate() {
+        let (load_factor, slip_margin, mu_hat) = match 3 * i / n {
+            0 => (0.85, 1.0, 0.8),
+            1 => (1.0, 1.0, 0.8),
+            _ => (1.45, 1.2, 0.7),
+        };
+        s.n_slip_mu_n = 2.0;
+        s.n_slip_n = 2.0 * 0.8 / mu_hat;
+        s.n_safety_n = 2.7;
+        s.n_load_n = 2.7 * load_factor;
+        s.required_n = 2.7 * load_factor * slip_margin * 0.8 / mu_hat;
+        s.load_factor = load_factor;
+        s.slip_margin = slip_margin;
+        s.margin = load_factor * slip_margin;
+        s.mu_hat = mu_hat;
+        s.lead_n = 0.1;
+    }
+    v
 }
 
 fn run(scene: &str, controller: &str, events: u64, mean: f64, expected_slip: bool) -> RunSummary {
@@ -109,6 +168,36 @@ fn run(scene: &str, controller: &str, events: u64, mean: f64, expected_slip: boo
     }
 }
 
+/// softgrip's command parts, the CSV's last columns.
+const PARTS: [&str; 10] = [
+    "n_slip_n",
+    "required_n",
+    "mu_hat",
+    "margin",
+    "slip_margin",
+    "load_factor",
+    "lead_n",
+    "n_slip_mu_n",
+    "n_safety_n",
+    "n_load_n",
+];
+
+/// A sample's command parts, in the order of [`PARTS`].
+fn parts(s: &Sample) -> [f32; 10] {
+    [
+        s.n_slip_n,
+        s.required_n,
+        s.mu_hat,
+        s.margin,
+        s.slip_margin,
+        s.load_factor,
+        s.lead_n,
+        s.n_slip_mu_n,
+        s.n_safety_n,
+        s.n_load_n,
+    ]
+}
+
 /// The numeric cells of a CSV row as read back.
 fn same(a: f64, b: f64) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
@@ -118,14 +207,21 @@ fn same(a: f64, b: f64) -> bool {
 fn csv_has_header_and_every_sample_round_trips() {
     let dir = TempDir::new("csv");
     let path = dir.join("run.csv");
-    let mut data = samples(500, 0.0);
+    let mut data = explained(500, 0.0);
     data[3].t_s = 0.1 + 0.2; // not exactly representable in few digits
     data[4].a_true_m = 1.0 / 3.0;
+    data[5].required_n = 1.0 / 3.0;
+    data[6] = Sample {
+        t_s: 6e-3,
+        ..unexplained()
+    };
     write_csv(&path, &data).unwrap();
 
     let mut rd = csv::Reader::from_path(&path).unwrap();
     let header: Vec<String> = rd.headers().unwrap().iter().map(str::to_string).collect();
     assert_eq!(header, SAMPLE_CSV_FIELDS);
+    // softgrip's command parts follow the status, units in their names.
+    assert_eq!(header[header.len() - PARTS.len()..], PARTS);
     let rows: Vec<csv::StringRecord> = rd.records().map(Result::unwrap).collect();
     assert_eq!(rows.len(), data.len());
 
@@ -151,6 +247,13 @@ fn csv_has_header_and_every_sample_round_trips() {
         ];
         for (name, v) in expect {
             assert!(same(f(name), v), "{name}: {} read back as {}", v, f(name));
+        }
+        for (name, v) in PARTS.into_iter().zip(parts(s)) {
+            let back: f32 = row[col(name)].parse().unwrap();
+            assert!(
+                back.to_bits() == v.to_bits() || (back.is_nan() && v.is_nan()),
+                "{name}: {v} read back as {back}"
+            );
         }
         let slipping: bool = row[col("slipping")].parse().unwrap();
         assert_eq!(slipping, s.slipping);
@@ -290,6 +393,54 @@ fn force_plot_has_lines_load_and_slip_shading() {
     assert!(svg.contains("fill=\"#1F77B4\""));
     // The second run never slips: nothing shaded in its colour.
     assert!(!svg.contains("fill=\"#FF7F0E\""));
+}
+
+#[test]
+fn force_plot_stacks_what_each_part_of_softgrips_command_asks() {
+    let dir = TempDir::new("force-bands");
+    let a = explained(3000, 0.0);
+    let b = explained(3000, 0.5);
+    let c = samples(3000, 1.0);
+    let path = dir.join("force.svg");
+    plot_force(
+        &path,
+        "shake: normal force",
+        &[("constant", &c), ("softgrip", &a), ("softgrip-table", &b)],
+    )
+    .unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert_clean_svg(&svg);
+    // The first run with parts gets the bands, each in the legend; the second does not.
+    for label in [
+        "softgrip: N_slip at μ (the model)",
+        "softgrip: × safety factor (and the disc factor β on torsion)",
+        "softgrip: × load factor (up to 1.45)",
+        "softgrip: × load factor (down to 0.85): given back",
+        "softgrip: × slip margin (up to 1.20), μ/μ̂",
+        "softgrip: + lead for the actuator",
+    ] {
+        assert!(svg.contains(label), "missing {label:?}");
+    }
+    assert!(!svg.contains("softgrip-table: "));
+    // Each band is one filled polygon per stretch of finite samples, in its pale colour.
+    for fill in [
+        "#C6DBEF", "#98DF8A", "#FFBB78", "#D4D4D4", "#FF9896", "#C5B0D5",
+    ] {
+        assert!(
+            svg.contains(&format!("fill=\"{fill}\"")),
+            "no band in {fill}"
+        );
+    }
+
+    // A band that asks nothing stays out of the legend; baselines alone get no bands.
+    let steady: Vec<Sample> = explained(300, 0.0).into_iter().take(100).collect();
+    plot_force(&path, "hold", &[("softgrip", &steady)]).unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(svg.contains("given back"));
+    assert!(!svg.contains("up to") && !svg.contains("slip margin"));
+    plot_force(&path, "baselines", &[("constant", &c), ("box", &c)]).unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(!svg.contains("N_slip") && !svg.contains("#C6DBEF"));
 }
 
 #[test]

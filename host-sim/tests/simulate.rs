@@ -1,9 +1,11 @@
 //! The grasp simulator: scenes, effects that are built only when listed, determinism, the
-//! link's accounting, and the command line.
+//! link's accounting, softgrip's command parts in the samples, and the command line.
 
+use host_sim::sim::controllers::LinkKind;
 use host_sim::sim::record::Sample;
-use host_sim::sim::run::run;
+use host_sim::sim::run::{controller_config, run, run_on};
 use host_sim::sim::scene::Scene;
+use softgrip::controller::ControllerConfig;
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -39,6 +41,9 @@ fn bits(s: &[Sample]) -> Vec<Vec<u64>> {
                 x.slip_distance_m.to_bits(),
                 u64::from(x.slipping),
             ]
+            .into_iter()
+            .chain(parts(x).map(|p| u64::from(p.to_bits())))
+            .collect()
         })
         .collect()
 }
@@ -114,6 +119,78 @@ fn softgrip_holds_the_basic_lift_and_every_controller_slips_in_the_overload() {
     // Ignoring torsion loses an off-centre payload.
     let (_, s) = samples(&text("twist"), "coulomb");
     assert!(s.slip_events > 0);
+}
+
+/// softgrip's command parts of a run's samples, as bits: `[n_slip_n, required_n, mu_hat,
+/// margin, slip_margin, load_factor, lead_n, n_slip_mu_n, n_safety_n, n_load_n]`.
+fn parts(s: &Sample) -> [f32; 10] {
+    [
+        s.n_slip_n,
+        s.required_n,
+        s.mu_hat,
+        s.margin,
+        s.slip_margin,
+        s.load_factor,
+        s.lead_n,
+        s.n_slip_mu_n,
+        s.n_safety_n,
+        s.n_load_n,
+    ]
+}
+
+#[test]
+fn softgrips_samples_say_what_its_command_is_made_of_on_both_links() {
+    let scene = Scene::parse(&text("shake")).unwrap();
+    let cfg = controller_config(&scene).unwrap();
+    let (cyclic, n_max) = (cfg.cyclic_factor, cfg.n_max_n as f32);
+    assert_eq!(cyclic, ControllerConfig::DEFAULT.cyclic_factor);
+    assert_eq!(cyclic, 1.45);
+    let mut seen = Vec::new();
+    for link in [LinkKind::InProcess, LinkKind::Direct] {
+        let out = run_on(&scene, "softgrip", &link, None).unwrap();
+        // The shake runs from 1.0 to 2.5 s; the controller finds it cyclic within it.
+        let shaking = out.samples.iter().filter(|s| (1.0..2.5).contains(&s.t_s));
+        assert!(
+            shaking.into_iter().any(|s| s.load_factor == cyclic as f32),
+            "{link:?}: the load factor never reached {cyclic}"
+        );
+        let mut at_target = 0;
+        for s in &out.samples {
+            let p = parts(s);
+            assert!(
+                p.iter().all(|x| x.is_finite()),
+                "{link:?} at {}: {p:?}",
+                s.t_s
+            );
+            let product = s.slip_margin * s.load_factor;
+            assert!((s.margin - product).abs() <= 1e-6 * s.margin, "{p:?}");
+            assert!(s.n_slip_n <= s.required_n, "{link:?} at {}: {p:?}", s.t_s);
+            assert!(s.lead_n >= 0.0, "{p:?}");
+            // The stack: the model, the safety factor, the load factor, the margin.
+            assert!(
+                s.n_slip_mu_n <= s.n_safety_n && s.n_load_n <= s.required_n,
+                "{p:?}"
+            );
+            // Where the command is the target, the host's required_n is the device's.
+            let target = f64::from(s.required_n.min(n_max) + s.lead_n);
+            if (s.n_cmd_n - target).abs() <= 1e-6 * s.n_cmd_n {
+                at_target += 1;
+            }
+        }
+        assert!(at_target > 300, "{link:?}: {at_target} ticks at the target");
+        seen.push(out.samples.iter().map(parts).collect::<Vec<_>>());
+    }
+    // The device answers the same bytes the same on both links.
+    assert!(seen[0]
+        .iter()
+        .zip(&seen[1])
+        .all(|(a, b)| a.map(f32::to_bits) == b.map(f32::to_bits)));
+    // A baseline has no parts.
+    let out = run_on(&scene, "fixed-torsion", &LinkKind::Direct, None).unwrap();
+    assert!(out
+        .samples
+        .iter()
+        .all(|s| parts(s).iter().all(|x| x.is_nan())));
 }
 
 #[test]

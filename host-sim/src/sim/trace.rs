@@ -3,7 +3,7 @@
 //! [`PlotTrace`].
 //!
 //! - **Samples** (docs/decisions/simulate-bounded-memory.md): at most [`MAX_TRACE_SAMPLES`]
-//!   (16 384; 2.2 MB), every `stride`-th tick
+//!   (16 384 of 176 bytes: 2.9 MB), every `stride`-th tick
 //!   plus the last. The stride starts at 1 and doubles whenever the buffer fills (every
 //!   other kept sample is dropped), so a run of up to 16 384 ticks is kept whole and a
 //!   longer one at a uniform stride of at most twice `ticks/16 384`. The plots draw at most
@@ -168,6 +168,16 @@ mod tests {
             slip_distance_m: 0.0,
             slip_rotation_rad: 0.0,
             status: "ok",
+            n_slip_n: f32::NAN,
+            required_n: f32::NAN,
+            mu_hat: f32::NAN,
+            margin: f32::NAN,
+            slip_margin: f32::NAN,
+            load_factor: f32::NAN,
+            lead_n: f32::NAN,
+            n_slip_mu_n: f32::NAN,
+            n_safety_n: f32::NAN,
+            n_load_n: f32::NAN,
         }
     }
 

@@ -21,11 +21,11 @@ use crate::link::qemu::QemuLink;
 use crate::link::serial::SerialLink;
 use crate::link::{Link, LinkError};
 use crate::sim::effects::LinkFate;
-use crate::sim::record::LinkSummary;
+use crate::sim::record::{CommandParts, LinkSummary};
 use clap::builder::PossibleValue;
 use clap::ValueEnum;
-use softgrip::controller::{Checked, ControllerConfig, Libm, Mode};
-use softgrip::protocol::{Reply, Request, SensorFrame};
+use softgrip::controller::{Checked, Controller, ControllerConfig, Libm, Mode, Status};
+use softgrip::protocol::{CommandFrame, Reply, Request, SensorFrame};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -241,6 +241,12 @@ pub trait GripController {
         frames: &[(SensorFrame, LinkFate)],
         slip_seen: bool,
     ) -> Result<Option<Answer>, LinkError>;
+    /// What the command of the last [`tick`](GripController::tick) is made of, for its
+    /// sample ([`CommandParts::NONE`] for a baseline, or when that tick had no reply).
+    /// Called only when the run keeps its samples; after every tick then.
+    fn parts(&mut self) -> CommandParts {
+        CommandParts::NONE
+    }
     /// The link's accounting at the end of a run.
     fn link_summary(&mut self) -> Result<LinkSummary, LinkError>;
     /// What the device measured of itself (start-up and tick costs, stack), as run
@@ -261,11 +267,68 @@ pub struct SoftgripLink {
     /// How many ticks cost each amount (a histogram, not a list: its size is bounded by
     /// the distinct costs, not the run's length).
     tick_costs: BTreeMap<u32, u64>,
+    /// The configuration the device runs (for [`Levels`]).
+    config: Checked,
+    /// The last tick's reply and the frame it answers, if it had one.
+    answered: Option<(CommandFrame, SensorFrame)>,
+    /// The host's copy of the device's model, built at the first sample: the forces the
+    /// reply does not carry.
+    levels: Option<Levels>,
+}
+
+/// The forces of a command's parts that the reply does not carry, evaluated on the host
+/// with the device's model (its configuration, `f32`, [`Libm`]: the same numbers to the
+/// solver's tolerance) for the load of the frame the device answered.
+#[derive(Debug)]
+struct Levels {
+    model: Option<Controller<f32, Libm>>,
+    /// The last good tick's `[required_n, n_slip_mu_n, n_safety_n, n_load_n]`: a bad tick
+    /// reports the last good one's, as the device does its `N_slip`.
+    last: [f32; 4],
+}
+
+impl Levels {
+    /// The host's model of `config` (the in-process devices' own when the process keeps
+    /// it: [`crate::link::handed`]).
+    fn new(config: &Checked) -> Self {
+        Self {
+            model: crate::link::handed::precompute::<Libm>(config).ok(),
+            last: [f32::NAN; 4],
+        }
+    }
+
+    /// `[required_n, n_slip_mu_n, n_safety_n, n_load_n]` \[N\] for the reply `c` to
+    /// `frame`: on a good tick (`ok`, `saturated`) the model's requirement of the frame's
+    /// load at the configured `μ`, with no safety factor, at the safety factor `s`, at
+    /// `s·load_factor` and at `s·margin·μ/μ̂` (the last two floored at 1 before `μ/μ̂`, as
+    /// the tick floors its safety factor); else the last good tick's.
+    fn of(&mut self, c: &CommandFrame, frame: &SensorFrame) -> [f32; 4] {
+        let (Some(model), Status::Ok | Status::Saturated) = (&self.model, c.status) else {
+            return self.last;
+        };
+        let [fx, fy] = frame.tangential_force_n;
+        let (ft, mn) = ((fx * fx + fy * fy).sqrt(), frame.torsional_moment_nm);
+        let s = model.config().safety as f32;
+        let mu = model.config().mu as f32;
+        let at = |safety: f32| {
+            model
+                .tick_required_force(ft, mn, safety)
+                .map_or(f32::NAN, |x| x.force_n)
+        };
+        let slip = model.slip_force(ft, mn).map_or(f32::NAN, |x| x.force_n);
+        self.last = [
+            at((s * c.margin).max(1.0) * (mu / c.mu_estimate)),
+            slip,
+            at(s),
+            at((s * c.load_factor).max(1.0)),
+        ];
+        self.last
+    }
 }
 
 impl SoftgripLink {
     /// Starts a device, configures it and records its counters' starting point.
-    pub fn start(name: &str, cfg: ControllerConfig, kind: &LinkKind) -> Result<Self, LinkError> {
+    pub fn start(name: &str, cfg: Checked, kind: &LinkKind) -> Result<Self, LinkError> {
         let mut link: Box<dyn Link> = match kind {
             LinkKind::InProcess => Box::new(PtyLink::spawn::<Libm>()?),
             LinkKind::Direct => Box::new(DirectLink::<Libm>::new()?),
@@ -275,7 +338,7 @@ impl SoftgripLink {
                     .map_err(|e| LinkError::Io(std::io::Error::other(format!("--port: {e}"))))?,
             ),
         };
-        match link.exchange(&Request::Configure(cfg))? {
+        match link.exchange(&Request::Configure(*cfg.config()))? {
             Reply::Configured(Ok(())) => {}
             other => return Err(LinkError::Unexpected(Box::new(other))),
         }
@@ -287,6 +350,9 @@ impl SoftgripLink {
             lost: 0,
             base,
             tick_costs: BTreeMap::new(),
+            config: cfg,
+            answered: None,
+            levels: None,
         })
     }
 }
@@ -314,6 +380,7 @@ impl GripController for SoftgripLink {
         _slip_seen: bool,
     ) -> Result<Option<Answer>, LinkError> {
         let mut answer = None;
+        self.answered = None;
         for (frame, fate) in frames {
             self.sent += 1;
             match fate {
@@ -326,6 +393,7 @@ impl GripController for SoftgripLink {
                         match self.link.exchange(&Request::Sensor(*frame))? {
                             Reply::Command(c) if c.seq == frame.seq => {
                                 *self.tick_costs.entry(c.tick_cost).or_insert(0) += 1;
+                                self.answered = Some((c, *frame));
                                 answer = Some(Answer {
                                     command_n: f64::from(c.normal_force_n),
                                     status: c.status.name(),
@@ -339,6 +407,27 @@ impl GripController for SoftgripLink {
             }
         }
         Ok(answer)
+    }
+
+    fn parts(&mut self) -> CommandParts {
+        let config = &self.config;
+        let levels = self.levels.get_or_insert_with(|| Levels::new(config));
+        let Some((c, frame)) = &self.answered else {
+            return CommandParts::NONE;
+        };
+        let [required_n, n_slip_mu_n, n_safety_n, n_load_n] = levels.of(c, frame);
+        CommandParts {
+            n_slip_n: c.n_slip_n,
+            required_n,
+            mu_hat: c.mu_estimate,
+            margin: c.margin,
+            slip_margin: c.margin / c.load_factor,
+            load_factor: c.load_factor,
+            lead_n: c.lead_n,
+            n_slip_mu_n,
+            n_safety_n,
+            n_load_n,
+        }
     }
 
     fn link_summary(&mut self) -> Result<LinkSummary, LinkError> {
@@ -410,7 +499,7 @@ pub fn build(
         *builds.entry(name.to_string()).or_default() += 1;
     }
     match ControllerKind::from_name(name).and_then(|k| k.softgrip_mode(cfg.mode)) {
-        Some(mode) => SoftgripLink::start(name, *cfg.with_mode(mode).config(), link)
+        Some(mode) => SoftgripLink::start(name, cfg.with_mode(mode), link)
             .map(|c| Box::new(c) as Box<dyn GripController>)
             .map_err(|e| e.to_string()),
         None => Baseline::new(name, cfg, baseline)?

@@ -61,7 +61,7 @@ pub(super) fn decimate_min_max(points: &[(f64, f64)], max: usize) -> Vec<(f64, f
 }
 
 /// Splits a sequence of optional points into the runs of consecutive `Some`s.
-pub(super) fn segments(points: impl Iterator<Item = Option<(f64, f64)>>) -> Vec<Vec<(f64, f64)>> {
+pub(super) fn segments<T>(points: impl Iterator<Item = Option<T>>) -> Vec<Vec<T>> {
     let mut out = Vec::new();
     let mut cur = Vec::new();
     for p in points {

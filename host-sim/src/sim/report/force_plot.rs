@@ -110,10 +110,15 @@ pub fn plot_force_with_slips(
     let (y_min, y_max) = force_range(runs, &slipped);
     let lanes: Vec<usize> = (0..runs.len()).filter(|&i| slipped[i]).collect();
     let labels = run_labels(runs, y_max);
+    let explained = bands::explained_run(runs).map(|i| (runs[i].0, bands::held(runs[i].1)));
+    let band_labels = explained.as_ref().map_or_else(Vec::new, |(name, s)| {
+        bands::band_labels(name, s, (y_min, y_max))
+    });
     let legend_w = legend_width(
         [SLIP_LANE_LABEL, LOAD_LABEL]
             .into_iter()
-            .chain(labels.iter().map(String::as_str)),
+            .chain(labels.iter().map(String::as_str))
+            .chain(band_labels.iter().map(|(_, l)| l.as_str())),
     );
     let lanes_px = if lanes.is_empty() {
         0
@@ -137,12 +142,17 @@ pub fn plot_force_with_slips(
                 .x_desc("time [s]")
                 .y_desc("force [N]")
                 .draw()?;
+            let band_legend = match &explained {
+                Some((_, s)) => bands::draw_bands(&mut chart, s, &band_labels, (y_min, y_max))?,
+                None => Vec::new(),
+            };
             let load_legend = match runs.first() {
                 Some((_, samples)) => Some(draw_load(&mut chart, samples)?),
                 None => None,
             };
             let mut legend = draw_runs(&mut chart, runs, &labels, y_max)?;
             legend.extend(load_legend);
+            legend.extend(band_legend);
             if !lanes.is_empty() {
                 draw_slip_lanes(&bottom, runs, slips, &lanes, times)?;
                 let first = run_colour(lanes[0]).filled();

@@ -3,7 +3,8 @@
 //!
 //! - [`write_csv`]: one row per [`Sample`], header = the field names of [`Sample`].
 //! - [`plot_surface`]: the load in normalised coordinates against the limit surface.
-//! - [`plot_force`]: the applied normal force over time, slip intervals as bars below.
+//! - [`plot_force`]: the applied normal force over time, slip intervals as bars below, and
+//!   under softgrip's line the force each part of its command asks (`bands.rs`).
 //! - [`write_summary_json`]: `{"runs": [...]}` of [`RunSummary`].
 //! - [`summary_table`] and [`comparison_table`]: fixed-width tables for the terminal.
 //!
@@ -22,6 +23,7 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
+mod bands;
 mod draw;
 mod files;
 mod force_plot;
@@ -35,7 +37,7 @@ pub use surface_plot::*;
 pub use tables::*;
 
 /// The CSV header [`write_csv`] writes: the field names of [`Sample`], in declaration order.
-pub const SAMPLE_CSV_FIELDS: [&str; 16] = [
+pub const SAMPLE_CSV_FIELDS: [&str; 26] = [
     "t_s",
     "ft_n",
     "mn_nm",
@@ -52,6 +54,16 @@ pub const SAMPLE_CSV_FIELDS: [&str; 16] = [
     "slip_distance_m",
     "slip_rotation_rad",
     "status",
+    "n_slip_n",
+    "required_n",
+    "mu_hat",
+    "margin",
+    "slip_margin",
+    "load_factor",
+    "lead_n",
+    "n_slip_mu_n",
+    "n_safety_n",
+    "n_load_n",
 ];
 
 /// Most line vertices drawn per run and curve (longer series are decimated for the plot

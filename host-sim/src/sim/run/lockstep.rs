@@ -7,7 +7,7 @@ use super::plant::{Plant, PlantStep};
 use super::tally::Tally;
 use crate::sim::controllers::GripController;
 use crate::sim::effects::{LinkFate, Pipeline, World};
-use crate::sim::record::{RunSummary, Sample};
+use crate::sim::record::{CommandParts, RunSummary, Sample};
 use crate::sim::scene::Scene;
 use crate::sim::task;
 use softgrip::protocol::SensorFrame;
@@ -85,11 +85,13 @@ impl<'s, 't> Lockstep<'s, 't> {
             dropped,
             &mut self.costs,
         );
+        // The command's parts for the sample (the host's reporting, outside the costs).
+        let parts = keep_sample.then(|| self.controller.parts());
         let t = self.costs.start();
         let slide = self.plant.slide();
         self.tally.record(&self.w, &step.tl, step.slipping, slide);
         self.slip_seen.push_back(step.slipping);
-        let sample = keep_sample.then(|| sample(&self.w, &sensed, &step, slide, self.status));
+        let sample = parts.map(|p| sample(&self.w, &sensed, &step, slide, (self.status, p)));
         self.costs.core += Costs::since(t);
         if self.has_actuator {
             self.pipeline.actuate(&mut self.w);
@@ -244,14 +246,15 @@ impl<'s, 't> Lockstep<'s, 't> {
     }
 }
 
-/// One tick's sample: the world after the step, the frame as sensed, the plant's step and
-/// the object's slide so far (distance [m], rotation [rad]).
+/// One tick's sample: the world after the step, the frame as sensed, the plant's step,
+/// the object's slide so far (distance [m], rotation [rad]), and the controller's status
+/// and its command's parts.
 fn sample(
     w: &World,
     sensed: &SensorFrame,
     step: &PlantStep,
     (dist, rot): (f64, f64),
-    status: &'static str,
+    (status, p): (&'static str, CommandParts),
 ) -> Sample {
     let [mx, my] = sensed.tangential_force_n;
     let tl = &step.tl;
@@ -272,5 +275,15 @@ fn sample(
         slip_distance_m: dist,
         slip_rotation_rad: rot,
         status,
+        n_slip_n: p.n_slip_n,
+        required_n: p.required_n,
+        mu_hat: p.mu_hat,
+        margin: p.margin,
+        slip_margin: p.slip_margin,
+        load_factor: p.load_factor,
+        lead_n: p.lead_n,
+        n_slip_mu_n: p.n_slip_mu_n,
+        n_safety_n: p.n_safety_n,
+        n_load_n: p.n_load_n,
     }
 }

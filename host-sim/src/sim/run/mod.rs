@@ -128,7 +128,7 @@ impl SampleSink for Vec<Sample> {
 
 /// Runs `scene` against `controller` on `link_kind`, with `options`. Unless
 /// `options.skip_samples`, every tick's sample is collected into `RunOutput::samples`
-/// (memory grows with the run: about 136 bytes a tick); [`run_streaming`] hands them to a
+/// (memory grows with the run: 176 bytes a tick); [`run_streaming`] hands them to a
 /// sink instead.
 pub fn run_with(
     scene: &Scene,

@@ -14,7 +14,10 @@
 //!
 //! Accuracy: exact for the rules above at the positions it is given (a return mapping;
 //! the forces follow the displacement history at the resolution it is stepped). Cost:
-//! one pass over the elements per update, one `sqrt` per loaded element.
+//! one pass over the loaded elements per update, with a `hypot` only where the squares of
+//! the stretch do not settle that the bristle sticks; per pressure ([`Bristles::load`]),
+//! the slip limits once per element group and element by element only where a group is
+//! loaded or unloaded (an unloaded element's anchor is set then, not at every update).
 
 use super::geometry::Patch;
 
@@ -59,34 +62,143 @@ pub struct BristleWrench {
     pub tangent: [f64; 6],
 }
 
-/// The bristles' state: each element's anchor and whether it slid in the last update.
+/// One element's bristle: where it is anchored on the object, and whether it slid in the
+/// last update.
+#[derive(Debug, Clone, Copy, Default)]
+struct Bristle {
+    anchor_m: [f64; 2],
+    sliding: bool,
+}
+
+/// A loaded element as an update reads it ([`Bristles::load`]): its index, its group
+/// (whose pressure and slip limits it carries), its centre \[m\] and its bristle's
+/// stiffness `k_t·A` times `x² + y²`, `x` and `y` (the products an update forms, formed
+/// once).
+#[derive(Debug, Clone, Copy)]
+struct Loaded {
+    i: usize,
+    group: usize,
+    x: f64,
+    y: f64,
+    ka_r2: f64,
+    ka_x: f64,
+    ka_y: f64,
+}
+
+/// The bristles' state: each element's anchor and whether it slid in the last update,
+/// and the pressure they are pressed with.
+///
+/// An unloaded element's anchor follows its point, and an update sets nothing else of
+/// it, so only its value after the last update counts: it is set when the element is
+/// loaded again ([`Bristles::load`]), to its point at the pose of the last update if an
+/// update came since it was unloaded, rather than at every update.
 #[derive(Debug, Clone)]
 pub struct Bristles {
     /// Stiffness per unit area `k_t` [N/m³].
     pub k_pa_per_m: f64,
-    anchor_x_m: Vec<f64>,
-    anchor_y_m: Vec<f64>,
-    sliding: Vec<bool>,
+    bristles: Vec<Bristle>,
+    /// Each element group's pressure `p` \[Pa\] and slip limits of the stretch, static
+    /// and kinetic, `μ·p/k_t` \[m\] ([`Bristles::load`]).
+    limits: Vec<[f64; 3]>,
+    /// Whether each element group is loaded (`p ≤ 0` false).
+    group_loaded: Vec<bool>,
+    /// The loaded elements, those an update applies the stick–slip rules to, ascending.
+    loaded: Vec<Loaded>,
+    /// For each unloaded element, the count of updates when it was unloaded.
+    unloaded_since: Vec<u64>,
+    /// Updates so far, and the pose of the last.
+    updates: (u64, Pose),
 }
 
 impl Bristles {
-    /// Fresh bristles (no stretch anywhere) for `n` elements.
+    /// Fresh bristles (no stretch anywhere, no pressure) for `n` elements.
     pub fn new(n: usize, k_pa_per_m: f64) -> Self {
         Self {
             k_pa_per_m,
-            anchor_x_m: vec![0.0; n],
-            anchor_y_m: vec![0.0; n],
-            sliding: vec![false; n],
+            bristles: vec![Bristle::default(); n],
+            limits: Vec::new(),
+            group_loaded: Vec::new(),
+            loaded: Vec::with_capacity(n),
+            unloaded_since: vec![0; n],
+            updates: (0, Pose::default()),
+        }
+    }
+
+    /// Presses the bristles for the updates that follow with `pressure_pa`, one per
+    /// element group of `patch` ([`Groups`](super::geometry::Groups): the elements of a
+    /// group carry the same pressure, as
+    /// [`Foundation::fill`](super::foundation::Foundation::fill) gives it), and sets the
+    /// slip limits `μ·p/k_t` from it, once per group. Element by element only where a
+    /// group is loaded or unloaded.
+    pub fn load(&mut self, patch: &Patch, pressure_pa: &[f64]) {
+        let k = self.k_pa_per_m;
+        let groups = &patch.groups;
+        self.limits.clear();
+        self.limits
+            .extend(pressure_pa.iter().zip(&groups.first).map(|(&p, &i)| {
+                let i = i as usize;
+                [p, patch.mu_static[i] * p / k, patch.mu_kinetic[i] * p / k]
+            }));
+        let same = self.group_loaded.len() == self.limits.len()
+            && (self.limits.iter().zip(&self.group_loaded)).all(|(l, &was)| was == loaded(l[0]));
+        if !same {
+            self.reload(patch);
+        }
+    }
+
+    /// [`Bristles::load`] where groups were loaded or unloaded: the loaded elements
+    /// anew, the anchors owed to the newly loaded ones set, the newly unloaded ones
+    /// marked.
+    fn reload(&mut self, patch: &Patch) {
+        let ka = self.k_pa_per_m * patch.area_m2;
+        let (count, q) = self.updates;
+        let was = std::mem::take(&mut self.group_loaded);
+        self.group_loaded = self.limits.iter().map(|l| loaded(l[0])).collect();
+        self.loaded.clear();
+        for (i, &g) in patch.groups.of.iter().enumerate().take(self.bristles.len()) {
+            let (g, (x, y)) = (g as usize, (patch.x_m[i], patch.y_m[i]));
+            let before = was.get(g).copied().unwrap_or(false);
+            if !self.group_loaded[g] {
+                if before {
+                    self.unloaded_since[i] = count;
+                }
+                continue;
+            }
+            if !before && count > self.unloaded_since[i] {
+                self.bristles[i] = Bristle {
+                    anchor_m: [q.ux_m - q.theta_rad * y, q.uy_m + q.theta_rad * x],
+                    sliding: false,
+                };
+            }
+            self.loaded.push(Loaded {
+                i,
+                group: g,
+                x,
+                y,
+                ka_r2: ka * (x * x + y * y),
+                ka_x: ka * x,
+                ka_y: ka * y,
+            });
         }
     }
 
     /// Resets every bristle to zero stretch at pose `q`.
     pub fn relax(&mut self, patch: &Patch, q: Pose) {
-        for i in 0..patch.len() {
-            self.anchor_x_m[i] = q.ux_m - q.theta_rad * patch.y_m[i];
-            self.anchor_y_m[i] = q.uy_m + q.theta_rad * patch.x_m[i];
-            self.sliding[i] = false;
+        for (i, b) in self.bristles.iter_mut().enumerate().take(patch.len()) {
+            *b = Bristle {
+                anchor_m: [
+                    q.ux_m - q.theta_rad * patch.y_m[i],
+                    q.uy_m + q.theta_rad * patch.x_m[i],
+                ],
+                sliding: false,
+            };
         }
+        self.unloaded_since.fill(self.updates.0);
+    }
+
+    /// The loaded elements, ascending, with their pressure \[Pa\].
+    fn loaded_pressures(&self) -> impl Iterator<Item = (&Loaded, f64)> + '_ {
+        self.loaded.iter().map(|l| (l, self.limits[l.group][0]))
     }
 
     /// How far the finger's grip on the object has slipped: the rigid motion `(u, θ)`
@@ -97,16 +209,18 @@ impl Bristles {
     /// goes, is not slip; a slid anchor has moved with the object. The weights make the
     /// elements that carry the grip count most, the lightly pressed edge of the patch
     /// least. The zero pose when nothing is loaded, no rotation when the loaded elements
-    /// are all at one point. Cost: two passes over the elements.
-    pub fn slip_pose(&self, patch: &Patch, pressure_pa: &[f64]) -> Pose {
+    /// are all at one point. The pressure of the last [`Bristles::load`]. Cost: two passes
+    /// over the loaded elements.
+    pub fn slip_pose(&self) -> Pose {
         let (mut w, mut sx, mut sy, mut sax, mut say) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+        for (l, p) in self.loaded_pressures() {
             if p > 0.0 {
+                let [ax, ay] = self.bristles[l.i].anchor_m;
                 w += p;
-                sx += p * patch.x_m[i];
-                sy += p * patch.y_m[i];
-                sax += p * self.anchor_x_m[i];
-                say += p * self.anchor_y_m[i];
+                sx += p * l.x;
+                sy += p * l.y;
+                sax += p * ax;
+                say += p * ay;
             }
         }
         if !(w > 0.0 && w.is_finite()) {
@@ -114,10 +228,11 @@ impl Bristles {
         }
         let (xm, ym, axm, aym) = (sx / w, sy / w, sax / w, say / w);
         let (mut num, mut den) = (0.0, 0.0);
-        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
+        for (l, p) in self.loaded_pressures() {
             if p > 0.0 {
-                let (x, y) = (patch.x_m[i] - xm, patch.y_m[i] - ym);
-                let (ax, ay) = (self.anchor_x_m[i] - axm, self.anchor_y_m[i] - aym);
+                let [ax, ay] = self.bristles[l.i].anchor_m;
+                let (x, y) = (l.x - xm, l.y - ym);
+                let (ax, ay) = (ax - axm, ay - aym);
                 num += p * (x * ay - y * ax);
                 den += p * (x * x + y * y);
             }
@@ -132,52 +247,52 @@ impl Bristles {
 
     /// `(loaded, sliding)`: the elements with `p > 0` and those of them that slid in the
     /// last update.
-    pub fn counts(&self, pressure_pa: &[f64]) -> (usize, usize) {
+    pub fn counts(&self) -> (usize, usize) {
         let mut out = (0, 0);
-        for (p, s) in pressure_pa.iter().zip(&self.sliding) {
-            if *p > 0.0 {
+        for (l, p) in self.loaded_pressures() {
+            if p > 0.0 {
                 out.0 += 1;
-                out.1 += usize::from(*s);
+                out.1 += usize::from(self.bristles[l.i].sliding);
             }
         }
         out
     }
 
-    /// Moves the object to `q` under the pressures `pressure_pa`, applies the stick–slip
-    /// rules and returns the wrench on the object.
+    /// Moves the object to `q` under the pressures of the last [`Bristles::load`],
+    /// applies the stick–slip rules and returns the wrench on the object.
     /// With `tangent`, also sums the consistent tangent stiffness
     /// ([`BristleWrench::tangent`]).
-    pub fn update(
-        &mut self,
-        patch: &Patch,
-        pressure_pa: &[f64],
-        q: Pose,
-        tangent: bool,
-    ) -> BristleWrench {
+    pub fn update(&mut self, patch: &Patch, q: Pose, tangent: bool) -> BristleWrench {
         let ka = self.k_pa_per_m * patch.area_m2;
+        let w = if tangent {
+            self.pass::<true>(ka, q)
+        } else {
+            self.pass::<false>(ka, q)
+        };
+        self.updates = (self.updates.0 + 1, q);
+        w
+    }
+
+    /// [`Bristles::update`]'s pass over the loaded elements, `ka = k_t·A`.
+    fn pass<const TANGENT: bool>(&mut self, ka: f64, q: Pose) -> BristleWrench {
         let mut w = BristleWrench::default();
-        for (i, &p) in pressure_pa.iter().enumerate().take(patch.len()) {
-            let (x, y) = (patch.x_m[i], patch.y_m[i]);
+        for l in &self.loaded {
+            let b = &mut self.bristles[l.i];
+            let [_, limit_static, limit_kinetic] = self.limits[l.group];
+            let (x, y) = (l.x, l.y);
             let dx = q.ux_m - q.theta_rad * y;
             let dy = q.uy_m + q.theta_rad * x;
-            if p <= 0.0 {
-                self.anchor_x_m[i] = dx;
-                self.anchor_y_m[i] = dy;
-                self.sliding[i] = false;
-                continue;
-            }
-            let (mut sx, mut sy) = (dx - self.anchor_x_m[i], dy - self.anchor_y_m[i]);
-            let mu = if self.sliding[i] {
-                patch.mu_kinetic[i]
+            let (mut sx, mut sy) = (dx - b.anchor_m[0], dy - b.anchor_m[1]);
+            let limit = if b.sliding {
+                limit_kinetic
             } else {
-                patch.mu_static[i]
+                limit_static
             };
-            let limit = mu * p / self.k_pa_per_m;
             let beyond = stretch_beyond(sx, sy, limit);
             let slides = beyond.is_some();
             if let Some(stretch) = beyond {
-                let keep = patch.mu_kinetic[i] * p / self.k_pa_per_m / stretch;
-                if tangent {
+                let keep = limit_kinetic / stretch;
+                if TANGENT {
                     let (ex, ey) = (sx / stretch, sy / stretch);
                     let m = [
                         keep * (1.0 - ex * ex),
@@ -188,31 +303,36 @@ impl Bristles {
                 }
                 sx *= keep;
                 sy *= keep;
-                self.anchor_x_m[i] = dx - sx;
-                self.anchor_y_m[i] = dy - sy;
-            } else if tangent {
+                b.anchor_m = [dx - sx, dy - sy];
+            } else if TANGENT {
                 add_tangent(&mut w.tangent, ka, [1.0, 0.0, 1.0], x, y);
             }
-            self.sliding[i] = slides;
+            b.sliding = slides;
             let (fx, fy) = (-ka * sx, -ka * sy);
-            let r2 = x * x + y * y;
             w.f_t_n[0] += fx;
             w.f_t_n[1] += fy;
             w.m_n_nm += x * fy - y * fx;
             w.loaded += 1;
             w.stiffness_n_per_m += ka;
-            w.torsion_nm_per_rad += ka * r2;
+            w.torsion_nm_per_rad += l.ka_r2;
             if !slides {
                 w.stuck += 1;
                 w.stuck_stiffness_n_per_m += ka;
-                w.stuck_torsion_nm_per_rad += ka * r2;
-                w.stuck_moment_n[0] += ka * x;
-                w.stuck_moment_n[1] += ka * y;
+                w.stuck_torsion_nm_per_rad += l.ka_r2;
+                w.stuck_moment_n[0] += l.ka_x;
+                w.stuck_moment_n[1] += l.ka_y;
             }
             w.energy_j += 0.5 * ka * (sx * sx + sy * sy);
         }
         w
     }
+}
+
+/// Whether an element pressed with `p` \[Pa\] is loaded: the stick–slip rules apply to
+/// it unless `p ≤ 0` (a NaN pressure is loaded, as it always was).
+fn loaded(p: f64) -> bool {
+    let unloaded = p <= 0.0;
+    !unloaded
 }
 
 /// The stretch `|(sx, sy)|` \[m\] when it exceeds `limit` \[m\] (the bristle slides), else

@@ -15,7 +15,7 @@
 //! [`Contact::displace`]).
 
 use super::bristles::{BristleWrench, Bristles, Pose};
-use super::foundation::{Foundation, Indentation};
+use super::foundation::{Foundation, Indentation, Scratch};
 use super::geometry::Patch;
 use super::params::BrushParams;
 use std::sync::Arc;
@@ -32,6 +32,9 @@ pub struct Contact {
     flat: Indentation,
     normal_n: f64,
     extent_m: (f64, f64),
+    /// The untilted and the tilted solves' working space (each begins where its last
+    /// solve ended).
+    passes: [Scratch; 2],
 }
 
 impl Contact {
@@ -50,6 +53,7 @@ impl Contact {
             flat: Indentation::default(),
             normal_n: 0.0,
             extent_m: (0.0, 0.0),
+            passes: Default::default(),
             patch,
         }
     }
@@ -74,33 +78,33 @@ impl Contact {
             0.0
         };
         let f = &self.foundation;
+        let [flat, tilted] = &mut self.passes;
         // The untilted contact (for the clamp of the skew), warm-started like the tilted.
-        self.flat = f.solve(&self.patch, n, 0.0, 0.0, self.flat);
+        self.flat = f.solve_in(&self.patch, [n, 0.0, 0.0], self.flat, flat);
         let (lo, hi) = f.extent_m(&self.patch, self.flat);
-        let m = ft_y_n * self.height_m;
-        self.indentation = f.solve(&self.patch, n, m, 0.5 * (hi - lo), self.indentation);
-        f.fill(&self.patch, self.indentation, &mut self.pressure_pa);
+        let load = [n, ft_y_n * self.height_m, 0.5 * (hi - lo)];
+        self.indentation = f.solve_in(&self.patch, load, self.indentation, tilted);
+        f.fill_in(&self.patch, self.indentation, &mut self.pressure_pa, tilted);
+        self.bristles.load(&self.patch, tilted.group_pressures());
         self.extent_m = f.extent_m(&self.patch, self.indentation);
         self.normal_n = n;
     }
 
     /// Moves the object to `q` and returns the bristles' wrench on it.
     pub fn displace(&mut self, q: Pose) -> BristleWrench {
-        self.bristles
-            .update(&self.patch, &self.pressure_pa, q, false)
+        self.bristles.update(&self.patch, q, false)
     }
 
     /// [`Contact::displace`] that also sums the bristles' consistent tangent stiffness
     /// ([`BristleWrench::tangent`]), for quasi-static solves.
     pub fn displace_with_tangent(&mut self, q: Pose) -> BristleWrench {
-        self.bristles
-            .update(&self.patch, &self.pressure_pa, q, true)
+        self.bristles.update(&self.patch, q, true)
     }
 
     /// How far the grip has slipped ([`Bristles::slip_pose`]): the object's pose less the
     /// layer's elastic stretch.
     pub fn slip_pose(&self) -> Pose {
-        self.bristles.slip_pose(&self.patch, &self.pressure_pa)
+        self.bristles.slip_pose()
     }
 
     /// Resets the bristles to zero stretch at `q`.
@@ -145,7 +149,7 @@ impl Contact {
     /// The fraction of the loaded elements whose bristle did not slide in the last
     /// [`Contact::displace`] (1 with nothing loaded).
     pub fn stuck_fraction(&self) -> f64 {
-        let (loaded, sliding) = self.bristles.counts(&self.pressure_pa);
+        let (loaded, sliding) = self.bristles.counts();
         if loaded == 0 {
             1.0
         } else {

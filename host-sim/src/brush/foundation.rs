@@ -13,8 +13,11 @@
 //!
 //! Accuracy: the residual is below `1e-10·N` (force) and `1e-10·N·Y` (moment) when the
 //! Newton iteration converges, and within `2^-50` of the bracket otherwise. Cost: each
-//! iteration is one pass over the elements (one `powf` per loaded element for `n ≠ 1`,
-//! none for `n = 1`); warm-started solves take 1–4 passes.
+//! iteration is one pass: the pressure once per loaded element group
+//! ([`Groups`](super::geometry::Groups): a row of the hemicylinder, a mirrored pair of the
+//! hemisphere; one `powf` each for `n ≠ 1`, none for `n = 1`), then a sum over the
+//! elements in their order. Warm-started solves take 1–4 passes, the first of them the
+//! last solve's last, kept in the contact's [`Scratch`].
 
 use super::geometry::Patch;
 
@@ -51,6 +54,30 @@ struct Sums {
     d: [f64; 3],
 }
 
+/// A contact's working space for the foundation's passes, kept from one solve to the
+/// next so that a pass allocates nothing: each element group's pressure and its
+/// derivative ([`Groups`](super::geometry::Groups)), and the last point a pass was made
+/// at with its sums (a warm-started solve begins where the last one ended, so its first
+/// pass is that one's last). For one patch and one foundation law: the sums are a
+/// function of the indentation alone, so a repeated point gives the same bits.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    terms: Vec<Option<(f64, f64)>>,
+    pressure_pa: Vec<f64>,
+    last: Option<(Indentation, Sums)>,
+}
+
+impl Scratch {
+    /// Each element group's pressure \[Pa\] as the last fill made in this scratch left it.
+    pub(super) fn group_pressures(&self) -> &[f64] {
+        &self.pressure_pa
+    }
+}
+
+fn same_point(a: Indentation, b: Indentation) -> bool {
+    a.delta_m.to_bits() == b.delta_m.to_bits() && a.beta_rad.to_bits() == b.beta_rad.to_bits()
+}
+
 impl Foundation {
     /// Pressure at penetration `s` \[Pa\].
     #[inline]
@@ -64,18 +91,34 @@ impl Foundation {
         }
     }
 
-    fn sums(&self, patch: &Patch, ind: Indentation) -> Sums {
-        let mut s = Sums::default();
+    /// The sums at `ind`: the pressure and its derivative once per element group, then
+    /// summed element by element in the elements' order (the same terms added in the
+    /// same order as one element at a time, so the same bits).
+    fn sums(&self, patch: &Patch, ind: Indentation, scratch: &mut Scratch) -> Sums {
+        if let Some((at, s)) = scratch.last {
+            if same_point(at, ind) {
+                return s;
+            }
+        }
         let n = self.exponent;
-        for (y, g) in patch.y_m.iter().zip(&patch.gap_m) {
-            let pen = ind.delta_m + ind.beta_rad * y - g;
-            if pen > 0.0 {
-                let (p, dp) = if n == 1.0 {
-                    (self.modulus * pen, self.modulus)
-                } else {
-                    let q = self.modulus * pen.powf(n - 1.0);
-                    (q * pen, n * q)
-                };
+        let groups = &patch.groups;
+        scratch.terms.clear();
+        scratch
+            .terms
+            .extend(groups.y_m.iter().zip(&groups.gap_m).map(|(y, g)| {
+                let pen = ind.delta_m + ind.beta_rad * y - g;
+                (pen > 0.0).then(|| {
+                    if n == 1.0 {
+                        (self.modulus * pen, self.modulus)
+                    } else {
+                        let q = self.modulus * pen.powf(n - 1.0);
+                        (q * pen, n * q)
+                    }
+                })
+            }));
+        let mut s = Sums::default();
+        for (&k, y) in groups.of.iter().zip(&patch.y_m) {
+            if let Some((p, dp)) = scratch.terms[k as usize] {
                 s.f[0] += p;
                 s.f[1] += p * y;
                 s.d[0] += dp;
@@ -86,16 +129,17 @@ impl Foundation {
         let a = patch.area_m2;
         s.f = s.f.map(|v| v * a);
         s.d = s.d.map(|v| v * a);
+        scratch.last = Some((ind, s));
         s
     }
 
     /// Total force `Σ p A` at `ind` \[N\].
     pub fn force_n(&self, patch: &Patch, ind: Indentation) -> f64 {
-        self.sums(patch, ind).f[0]
+        self.sums(patch, ind, &mut Scratch::default()).f[0]
     }
 
     /// The indentation at tilt `beta` carrying `normal_n`, by bisection (monotone).
-    fn delta_for(&self, patch: &Patch, normal_n: f64, beta: f64) -> f64 {
+    fn delta_for(&self, patch: &Patch, normal_n: f64, beta: f64, scratch: &mut Scratch) -> f64 {
         let lo0 = patch
             .y_m
             .iter()
@@ -103,14 +147,12 @@ impl Foundation {
             .map(|(y, g)| g - beta * y)
             .fold(f64::INFINITY, f64::min);
         let (mut lo, mut step) = (lo0, patch.dy_m.max(1e-9));
-        let at = |d: f64| {
-            self.force_n(
-                patch,
-                Indentation {
-                    delta_m: d,
-                    beta_rad: beta,
-                },
-            )
+        let mut at = |d: f64| {
+            let ind = Indentation {
+                delta_m: d,
+                beta_rad: beta,
+            };
+            self.sums(patch, ind, scratch).f[0]
         };
         let mut hi = lo + step;
         let mut k = 0;
@@ -133,11 +175,15 @@ impl Foundation {
 
     /// The untilted indentation carrying `normal_n` \[m\] (bisection).
     pub fn untilted(&self, patch: &Patch, normal_n: f64) -> Indentation {
+        self.untilted_in(patch, normal_n, &mut Scratch::default())
+    }
+
+    fn untilted_in(&self, patch: &Patch, normal_n: f64, scratch: &mut Scratch) -> Indentation {
         if !(normal_n > 0.0 && normal_n.is_finite()) {
             return Indentation::default();
         }
         Indentation {
-            delta_m: self.delta_for(patch, normal_n, 0.0),
+            delta_m: self.delta_for(patch, normal_n, 0.0, scratch),
             beta_rad: 0.0,
         }
     }
@@ -152,6 +198,19 @@ impl Foundation {
         half_width0_m: f64,
         warm: Indentation,
     ) -> Indentation {
+        let load = [normal_n, moment_y_nm, half_width0_m];
+        self.solve_in(patch, load, warm, &mut Scratch::default())
+    }
+
+    /// [`Foundation::solve`] for `[normal_n, moment_y_nm, half_width0_m]`, its passes in
+    /// `scratch` (kept by the caller for this patch and law).
+    pub(super) fn solve_in(
+        &self,
+        patch: &Patch,
+        [normal_n, moment_y_nm, half_width0_m]: [f64; 3],
+        warm: Indentation,
+        scratch: &mut Scratch,
+    ) -> Indentation {
         if !(normal_n > 0.0 && normal_n.is_finite()) {
             return Indentation::default();
         }
@@ -164,18 +223,25 @@ impl Foundation {
         let warm = if warm.delta_m.is_finite() && warm.beta_rad.is_finite() && warm.delta_m > 0.0 {
             warm
         } else {
-            self.untilted(patch, normal_n)
+            self.untilted_in(patch, normal_n, scratch)
         };
-        match self.newton(patch, normal_n, m, warm) {
+        match self.newton(patch, normal_n, m, warm, scratch) {
             Some(ind) => ind,
-            None => self.nested(patch, normal_n, m),
+            None => self.nested(patch, normal_n, m, scratch),
         }
     }
 
-    fn newton(&self, patch: &Patch, n: f64, m: f64, mut x: Indentation) -> Option<Indentation> {
+    fn newton(
+        &self,
+        patch: &Patch,
+        n: f64,
+        m: f64,
+        mut x: Indentation,
+        scratch: &mut Scratch,
+    ) -> Option<Indentation> {
         let ly = patch.half_width_m;
         let norm = |s: &Sums| ((s.f[0] - n) / n).hypot((s.f[1] - m) / (n * ly));
-        let mut s = self.sums(patch, x);
+        let mut s = self.sums(patch, x, scratch);
         let mut r = norm(&s);
         for _ in 0..NEWTON_ITERATIONS {
             if r < 1e-10 {
@@ -194,7 +260,7 @@ impl Foundation {
                     delta_m: x.delta_m + t * dd,
                     beta_rad: x.beta_rad + t * db,
                 };
-                let st = self.sums(patch, trial);
+                let st = self.sums(patch, trial, scratch);
                 let rt = norm(&st);
                 if rt < r || t < 1e-3 {
                     (x, s, r) = (trial, st, rt);
@@ -206,16 +272,16 @@ impl Foundation {
         (r < 1e-10).then_some(x)
     }
 
-    fn nested(&self, patch: &Patch, n: f64, m: f64) -> Indentation {
-        let moment = |beta: f64| {
-            let d = self.delta_for(patch, n, beta);
+    fn nested(&self, patch: &Patch, n: f64, m: f64, scratch: &mut Scratch) -> Indentation {
+        let d0 = self.delta_for(patch, n, 0.0, scratch);
+        let mut moment = |beta: f64| {
+            let d = self.delta_for(patch, n, beta, scratch);
             let ind = Indentation {
                 delta_m: d,
                 beta_rad: beta,
             };
-            (ind, self.sums(patch, ind).f[1])
+            (ind, self.sums(patch, ind, scratch).f[1])
         };
-        let d0 = self.delta_for(patch, n, 0.0);
         let mut hi = d0.max(patch.dy_m) / patch.half_width_m * m.signum();
         let mut k = 0;
         while (moment(hi).1 - m) * m.signum() < 0.0 && k < 40 {
@@ -236,8 +302,28 @@ impl Foundation {
 
     /// Fills `pressure_pa` (one per element) at `ind`.
     pub fn fill(&self, patch: &Patch, ind: Indentation, pressure_pa: &mut [f64]) {
-        for ((p, y), g) in pressure_pa.iter_mut().zip(&patch.y_m).zip(&patch.gap_m) {
-            *p = self.pressure_pa(ind.delta_m + ind.beta_rad * y - g);
+        self.fill_in(patch, ind, pressure_pa, &mut Scratch::default());
+    }
+
+    /// [`Foundation::fill`], each element group's pressure computed once, in `scratch`.
+    pub(super) fn fill_in(
+        &self,
+        patch: &Patch,
+        ind: Indentation,
+        pressure_pa: &mut [f64],
+        scratch: &mut Scratch,
+    ) {
+        let groups = &patch.groups;
+        scratch.pressure_pa.clear();
+        scratch.pressure_pa.extend(
+            groups
+                .y_m
+                .iter()
+                .zip(&groups.gap_m)
+                .map(|(y, g)| self.pressure_pa(ind.delta_m + ind.beta_rad * y - g)),
+        );
+        for (p, &k) in pressure_pa.iter_mut().zip(&groups.of) {
+            *p = scratch.pressure_pa[k as usize];
         }
     }
 

@@ -10,7 +10,8 @@
 //! over the patch converge as the element side `Δ` shrinks, at about `O(Δ²)` (the
 //! contact's edge, where the penetration has a kink, can add an `O(Δ²)` term that
 //! oscillates with where the edge falls); `host-sim/tests/brush_plant.rs` measures it. Cost:
-//! built once, `elements²` elements of five f64.
+//! built once, `elements²` elements of five f64, and their [`Groups`] (a hash of each
+//! element's inputs to the pressure).
 
 use super::params::{BrushParams, BrushShape};
 
@@ -37,6 +38,58 @@ pub struct Patch {
     pub row_y_m: Vec<f64>,
     /// Each row's least gap \[m\].
     pub row_gap_m: Vec<f64>,
+    /// The elements grouped by their inputs to the pressure ([`Groups`]).
+    pub groups: Groups,
+}
+
+/// The elements grouped by their centre across the axis, their gap and their friction
+/// coefficients, bit for bit: the elements of a group have the same penetration
+/// `δ + β·y − gap` at every indentation and tilt, so the same pressure, and the same
+/// friction limits under it; the foundation computes the pressure (a `powf` for `n ≠ 1`)
+/// and the bristles their limits once per group. The hemicylinder's groups are its rows;
+/// the hemisphere's pair up the elements mirrored along the axis where their gaps come
+/// out equal.
+#[derive(Debug, Clone, Default)]
+pub struct Groups {
+    /// Each element's group.
+    pub of: Vec<u32>,
+    /// Each group's first element.
+    pub first: Vec<u32>,
+    /// Each group's centre across the axis \[m\].
+    pub y_m: Vec<f64>,
+    /// Each group's gap \[m\].
+    pub gap_m: Vec<f64>,
+}
+
+impl Groups {
+    /// The groups of the patch's elements, numbered in the order they first appear.
+    fn new(patch: &Patch) -> Self {
+        let mut index = std::collections::HashMap::new();
+        let mut g = Groups::default();
+        for i in 0..patch.len() {
+            let (y, gap) = (patch.y_m[i], patch.gap_m[i]);
+            let key = [y, gap, patch.mu_static[i], patch.mu_kinetic[i]].map(f64::to_bits);
+            let next = g.y_m.len() as u32;
+            let k = *index.entry(key).or_insert(next);
+            if k == next {
+                g.first.push(i as u32);
+                g.y_m.push(y);
+                g.gap_m.push(gap);
+            }
+            g.of.push(k);
+        }
+        g
+    }
+
+    /// Number of groups.
+    pub fn len(&self) -> usize {
+        self.y_m.len()
+    }
+
+    /// Whether there are no groups.
+    pub fn is_empty(&self) -> bool {
+        self.y_m.is_empty()
+    }
 }
 
 impl Patch {
@@ -62,6 +115,7 @@ impl Patch {
             half_width_m: hy,
             row_y_m: Vec::with_capacity(n),
             row_gap_m: vec![f64::INFINITY; n],
+            groups: Groups::default(),
         };
         for i in 0..n {
             let x = -hx + (i as f64 + 0.5) * dx;
@@ -88,6 +142,7 @@ impl Patch {
                 patch.row_gap_m[j] = patch.row_gap_m[j].min(gap);
             }
         }
+        patch.groups = Groups::new(&patch);
         patch
     }
 

@@ -28,8 +28,10 @@
 //! **Cost** per tick (one pressure solve, warm, and one sub-step at its forces): the run's
 //! metric `brush_step_per_tick_s`, which
 //! `cargo run --release -p host-sim -- simulate host-sim/scenes/brush_lift_hold.toml`
-//! reports. Each bristle pass is one sweep over the patch's elements; the pressure solve
-//! 1–4 sweeps.
+//! reports. Each bristle pass is one sweep over the loaded elements; the pressure solve
+//! 1–4 sweeps over the elements, its pressure law (a `powf` for `n ≠ 1`) evaluated once
+//! per element group ([`geometry::Groups`]). `docs/brush-finger.md` ("Cost") gives the
+//! figures per finger.
 
 pub mod bristles;
 pub mod contact;

@@ -467,13 +467,48 @@ impl ControllerConfig {
         // inlined checks cost the firmware about 1 KB of flash.
         let inf = f64::INFINITY;
         let rows: [(&'static str, f64, f64, f64, bool, &'static str); 10] = [
-            ("disc_torsion_factor", self.disc_torsion_factor, 1.0, inf, false, ">= 1"),
+            (
+                "disc_torsion_factor",
+                self.disc_torsion_factor,
+                1.0,
+                inf,
+                false,
+                ">= 1",
+            ),
             ("cyclic_factor", self.cyclic_factor, 1.0, inf, false, ">= 1"),
-            ("steady_factor", self.steady_factor, 0.0, 1.0, true, "0 < x <= 1"),
+            (
+                "steady_factor",
+                self.steady_factor,
+                0.0,
+                1.0,
+                true,
+                "0 < x <= 1",
+            ),
             ("steady_ramp_s", self.steady_ramp_s, 0.0, inf, false, ">= 0"),
-            ("slip_step_incipient", self.slip_step_incipient, 0.0, inf, false, ">= 0"),
-            ("slip_step_gross", self.slip_step_gross, 0.0, inf, false, ">= 0"),
-            ("slip_margin_max", self.slip_margin_max, 1.0, inf, false, ">= 1"),
+            (
+                "slip_step_incipient",
+                self.slip_step_incipient,
+                0.0,
+                inf,
+                false,
+                ">= 0",
+            ),
+            (
+                "slip_step_gross",
+                self.slip_step_gross,
+                0.0,
+                inf,
+                false,
+                ">= 0",
+            ),
+            (
+                "slip_margin_max",
+                self.slip_margin_max,
+                1.0,
+                inf,
+                false,
+                ">= 1",
+            ),
             (
                 "creep_margin_max",
                 self.creep_margin_max,
@@ -482,8 +517,22 @@ impl ControllerConfig {
                 false,
                 "1 <= creep_margin_max <= slip_margin_max",
             ),
-            ("mu_floor_fraction", self.mu_floor_fraction, 0.0, 1.0, true, "0 < x <= 1"),
-            ("untold_lag_s", self.untold_lag_s, 0.0, 1.0, false, "0 <= x <= 1"),
+            (
+                "mu_floor_fraction",
+                self.mu_floor_fraction,
+                0.0,
+                1.0,
+                true,
+                "0 < x <= 1",
+            ),
+            (
+                "untold_lag_s",
+                self.untold_lag_s,
+                0.0,
+                1.0,
+                false,
+                "0 <= x <= 1",
+            ),
         ];
         for (param, v, lo, hi, open_below, expected) in rows {
             let above = if open_below { v > lo } else { v >= lo };

@@ -107,6 +107,14 @@ impl<M: TickMath<f32>, P: Real> Default for Device<M, Precompute<P>> {
     }
 }
 
+/// `a == b`, out of line: inlined into the device loop, each of the configuration's f64
+/// comparisons (a soft-float call) spilled the loop's FPU registers around it, about
+/// 60 bytes of flash a field (docs/decisions/firmware-size-levers.md).
+#[inline(never)]
+fn same_config(a: &ControllerConfig, b: &ControllerConfig) -> bool {
+    a == b
+}
+
 #[cfg(feature = "stack-probe")]
 fn no_stack_probe() -> u32 {
     0
@@ -256,7 +264,11 @@ impl<M: TickMath<f32>, S: ControllerSource<M>> Device<M, S> {
                 }
             }
             Request::Configure(_) | Request::Sensor(_) if self.incompatible => incompatible,
-            Request::Configure(cfg) if self.controller().is_some_and(|c| *c.config() == cfg) => {
+            Request::Configure(cfg)
+                if self
+                    .controller()
+                    .is_some_and(|c| same_config(c.config(), &cfg)) =>
+            {
                 // The same configuration again: nothing to rebuild, nothing changes.
                 Reply::Configured(Ok(()))
             }

@@ -5,8 +5,9 @@
 //! that cannot identify it falls short, a fast shake is not over-commanded, and an ideal
 //! actuator changes no command.
 
-use softgrip::controller::lead::CYCLIC_SAFETY_FACTOR;
-use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
+use softgrip::controller::{
+    Controller, ControllerConfig, Measurement, Mode, SlipSignal, CYCLIC_SAFETY_FACTOR,
+};
 
 #[path = "common/noise.rs"]
 mod noise;

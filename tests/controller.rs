@@ -5,10 +5,10 @@
 mod stress_cases;
 
 use proptest::prelude::*;
-use softgrip::controller::lead::STEADY_SAFETY_FACTOR;
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, Micromath, Mode, SkewParams, Status,
     DISC_TORSION_SAFETY_FACTOR, MAX_ILLINOIS_ITERATIONS, MAX_ILLINOIS_ITERATIONS_F32,
+    STEADY_SAFETY_FACTOR,
 };
 use softgrip::{contact::ContactSize, FlsConfig, FlsModel, FlsTable, QuadratureOrder, Shape};
 

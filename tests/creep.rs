@@ -3,8 +3,11 @@
 //! moves μ̂, while a report at a load near the limit, or a gross slip, still gets the
 //! full response.
 
-use softgrip::controller::slip::{CREEP_MARGIN_MAX, CREEP_UTILISATION, MARGIN_STEP_GROSS};
-use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
+use softgrip::controller::slip::CREEP_UTILISATION;
+use softgrip::controller::{
+    Controller, ControllerConfig, Measurement, Mode, SlipSignal, CREEP_MARGIN_MAX,
+    MARGIN_STEP_GROSS,
+};
 
 fn frame(k: u64, f: f64, n: f64, slip: SlipSignal) -> Measurement<f64> {
     Measurement {
@@ -36,7 +39,7 @@ fn hold(u: f64, seconds: f64, slip: SlipSignal) -> softgrip::controller::TickOut
     let mut out = c.tick(&frame(0, f, 5.0, SlipSignal::None));
     for k in 1..(seconds * 1000.0) as u64 {
         out = c.tick(&frame(k, f, 5.0, slip));
-        assert!(out.margin <= softgrip::controller::slip::MARGIN_MAX);
+        assert!(out.margin <= softgrip::controller::MARGIN_MAX);
     }
     out
 }

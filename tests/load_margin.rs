@@ -7,11 +7,11 @@
 //! 1 to `STEADY_SAFETY_FACTOR` over `STEADY_RAMP_S`, until it falls past that depth or
 //! rises by more than `STEADY_RISE_N`, and the force asked never falls below `N_slip`.
 
-use softgrip::controller::lead::{
-    CYCLE_DEPTH, CYCLIC_SAFETY_FACTOR, STEADY_HOLD_S, STEADY_RAMP_S, STEADY_RISE_N,
-    STEADY_SAFETY_FACTOR, SWING_WINDOW_S,
+use softgrip::controller::lead::{CYCLE_DEPTH, STEADY_HOLD_S, STEADY_RISE_N, SWING_WINDOW_S};
+use softgrip::controller::{
+    Controller, ControllerConfig, Measurement, Mode, SlipSignal, CYCLIC_SAFETY_FACTOR,
+    STEADY_RAMP_S, STEADY_SAFETY_FACTOR,
 };
-use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 use std::f64::consts::TAU;
 
 #[path = "common/noise.rs"]

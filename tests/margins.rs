@@ -3,14 +3,11 @@
 //! each changes the tick as its documentation says, and every tick reports the parts of
 //! its command (`margin = slip_margin · load_factor`, `lead_n ≥ 0`).
 
-use softgrip::controller::actuator::UNTOLD_LAG_S;
-use softgrip::controller::lead::{CYCLIC_SAFETY_FACTOR, STEADY_RAMP_S, STEADY_SAFETY_FACTOR};
-use softgrip::controller::slip::{
-    CREEP_MARGIN_MAX, MARGIN_MAX, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
-};
 use softgrip::controller::{
     Controller, ControllerConfig, FingerShape, Measurement, SlipSignal, TickOutput,
-    DISC_TORSION_SAFETY_FACTOR,
+    CREEP_MARGIN_MAX, CYCLIC_SAFETY_FACTOR, DISC_TORSION_SAFETY_FACTOR, MARGIN_MAX,
+    MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION, STEADY_RAMP_S,
+    STEADY_SAFETY_FACTOR, UNTOLD_LAG_S,
 };
 use std::f64::consts::TAU;
 

@@ -5,15 +5,13 @@
 //! to exactly the controller that never saw a slip.
 
 use proptest::prelude::*;
-use softgrip::controller::actuator::UNTOLD_LAG_S;
-use softgrip::controller::lead::{
-    CYCLIC_SAFETY_FACTOR, RATE_DEADBAND_N_PER_S, STEADY_SAFETY_FACTOR,
+use softgrip::controller::lead::RATE_DEADBAND_N_PER_S;
+use softgrip::controller::slip::{MARGIN_QUIET_S, QUIET_S, RELAX_TAU_S};
+use softgrip::controller::{
+    Controller, ControllerConfig, Measurement, Mode, SlipSignal, CYCLIC_SAFETY_FACTOR, MARGIN_MAX,
+    MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION, STEADY_SAFETY_FACTOR,
+    UNTOLD_LAG_S,
 };
-use softgrip::controller::slip::{
-    MARGIN_MAX, MARGIN_QUIET_S, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
-    QUIET_S, RELAX_TAU_S,
-};
-use softgrip::controller::{Controller, ControllerConfig, Measurement, Mode, SlipSignal};
 
 fn frame(t_us: u64, f: f64, m: f64, n: f64, slip: SlipSignal) -> Measurement<f64> {
     Measurement {

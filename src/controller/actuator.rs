@@ -18,7 +18,7 @@
 //!   weighing the sums down by `1 − 1/`[`MEMORY_SAMPLES`], started from the configured
 //!   `actuator_lag_s` with the weight of [`PRIOR_SAMPLES`] samples at
 //!   [`PRIOR_RATE_N_PER_S`]. A lag of 0 says "not told": the sums start from
-//!   [`UNTOLD_LAG_S`] weighing [`UNTOLD_PRIOR_SAMPLES`] samples, so the load's first rise
+//!   `untold_lag_s` weighing [`UNTOLD_PRIOR_SAMPLES`] samples, so the load's first rise
 //!   is led before any sample.
 //! - `τ̂` below [`LAG_FLOOR_TICKS`] ticks is an ideal actuator: the lead gets 0 and changes
 //!   no command. To describe an ideal actuator, give a lag of one tick.
@@ -91,12 +91,7 @@ fn prior_weight(actuator_lag_s: f64) -> f64 {
     }
 }
 
-/// The default of `untold_lag_s`: the lag assumed of an actuator nobody described
-/// (`actuator_lag_s = 0`) until its own samples say otherwise \[s\]: the slow end of tendon, cable and geared-motor grippers,
-/// and the lead the first rise gets for an undescribed slew too
-/// (docs/decisions/untold-actuator-lag.md).
-pub const UNTOLD_LAG_S: f64 = 0.04;
-/// The weight of [`UNTOLD_LAG_S`], in samples: a guess the actuator's own first samples
+/// The weight of the untold lag (`untold_lag_s`), in samples: a guess the actuator's own first samples
 /// outweigh (docs/decisions/untold-actuator-lag.md).
 pub const UNTOLD_PRIOR_SAMPLES: f64 = 2.0;
 

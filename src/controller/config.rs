@@ -1,10 +1,5 @@
 //! The controller's configuration, validated once at start-up.
 
-use crate::controller::actuator::UNTOLD_LAG_S;
-use crate::controller::lead::{CYCLIC_SAFETY_FACTOR, STEADY_RAMP_S, STEADY_SAFETY_FACTOR};
-use crate::controller::slip::{
-    CREEP_MARGIN_MAX, MARGIN_MAX, MARGIN_STEP_GROSS, MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION,
-};
 use crate::error::{check, ConfigError};
 use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
@@ -112,12 +107,39 @@ impl FingerShape {
     }
 }
 
-/// The default of `disc_torsion_factor` \[-\]: the factor on `s` that a round patch's
-/// moment ([`FingerShape::Disc`]) carries in the tick's requirement, one multiplication;
-/// `N_slip` stays the model's own. Chosen in
-/// docs/decisions/round-patch-torsion-factor.md, shown by
-/// `tests/controller.rs::a_round_patchs_moment_carries_its_own_factor_in_the_tick`.
+// The margins' defaults ([`ControllerConfig::DEFAULT`]), here so that the modules that
+// use the margins import the configuration and not the other way round.
+
+/// Default `disc_torsion_factor` \[-\]: a round patch's moment carries `1.5·s`, for a rim
+/// that creeps under a sustained twist (docs/decisions/round-patch-torsion-factor.md).
 pub const DISC_TORSION_SAFETY_FACTOR: f64 = 1.5;
+/// Default `cyclic_factor` \[-\]: the factor on `s` while the load cycles
+/// (docs/decisions/cyclic-factor.md).
+pub const CYCLIC_SAFETY_FACTOR: f64 = 1.45;
+/// Default `steady_factor` \[-\]: at `s = 1.35` a steady hold asks `1.15·N_slip`
+/// (docs/decisions/steady-margin.md).
+pub const STEADY_SAFETY_FACTOR: f64 = 0.85;
+/// Default `steady_ramp_s` \[s\]: the steady factor is eased in, not stepped
+/// (docs/decisions/steady-ramp.md).
+pub const STEADY_RAMP_S: f64 = 0.5;
+/// Default `slip_step_incipient` \[-\]: the margin added on a confirmed incipient slip
+/// (docs/decisions/slip-response-steps.md).
+pub const MARGIN_STEP_INCIPIENT: f64 = 0.05;
+/// Default `slip_step_gross` \[-\]: the margin added on a gross slip
+/// (docs/decisions/slip-response-steps.md).
+pub const MARGIN_STEP_GROSS: f64 = 0.3;
+/// Default `slip_margin_max` \[-\]: the largest slip margin; `N_max` caps the command in
+/// any case (docs/decisions/slip-response-steps.md).
+pub const MARGIN_MAX: f64 = 3.0;
+/// Default `creep_margin_max` \[-\]: the most margin creep alone can ask for
+/// (`tests/creep.rs`).
+pub const CREEP_MARGIN_MAX: f64 = 1.1;
+/// Default `mu_floor_fraction` \[-\]: the lowest `μ̂` a slip can teach, as a fraction of
+/// `μ` (docs/decisions/slip-response-steps.md).
+pub const MU_FLOOR_FRACTION: f64 = 0.5;
+/// Default `untold_lag_s` \[s\]: the slow end of tendon, cable and geared-motor grippers,
+/// which also leads an undescribed slew (docs/decisions/untold-actuator-lag.md).
+pub const UNTOLD_LAG_S: f64 = 0.04;
 
 /// How the tick tests the load against the limit surface (docs/model.md, "The slip-prevention
 /// rule").
@@ -250,7 +272,7 @@ with_schema! {
         /// Time constant of the actuator that applies the command \[s\], `0 ≤ τ ≤ 1`: the
         /// prior of the lag the controller identifies online and commands ahead of a
         /// rising load by (see [`lead`](super::lead)). 0 says "not told": the identifier
-        /// starts from a 40 ms guess ([`UNTOLD_LAG_S`](super::actuator::UNTOLD_LAG_S)).
+        /// starts from `untold_lag_s` (a 40 ms guess by default).
         /// A lag under [`LAG_FLOOR_TICKS`](super::actuator::LAG_FLOOR_TICKS) tick periods
         /// (one tick, say) describes an ideal actuator, which gets no lead.
         pub actuator_lag_s: f64,

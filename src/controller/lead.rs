@@ -30,14 +30,14 @@
 //! at an extreme `x` is [`CYCLE_DEPTH`]`·x` plus the `N_slip` of [`CYCLE_DEPTH_FLOOR_N`] of
 //! load.
 //!
-//! - **Cyclic loads**: [`CYCLIC_SAFETY_FACTOR`] while the load cycles. A turn is a fall
+//! - **Cyclic loads**: `cyclic_factor` while the load cycles. A turn is a fall
 //!   (top) or rise (bottom) of a swing's depth from the extreme; the load cycles from a
 //!   bottom turn that follows a top turn within [`SWING_WINDOW_S`] and another bottom turn
 //!   within twice that, until twice [`SWING_WINDOW_S`] after it. One lift or one twist
 //!   never cycles (`tests/load_margin.rs`; docs/decisions/cyclic-factor.md).
 //! - **Steady loads**: once `N_slip` has stayed within a swing's depth of where it settled
 //!   for [`STEADY_HOLD_S`] and the load does not cycle, the factor falls linearly from 1
-//!   to [`STEADY_SAFETY_FACTOR`] over [`STEADY_RAMP_S`] (whole ticks, rounded up) and
+//!   to `steady_factor` over `steady_ramp_s` (whole ticks, rounded up) and
 //!   stays there. A fall of a swing's depth, or a rise of [`STEADY_RISE_N`] of load, ends
 //!   it on the same tick. It waits while the slip response ([`slip`](super::slip))
 //!   remembers a slip (`tests/load_margin.rs`; docs/decisions/steady-margin.md,
@@ -68,22 +68,9 @@ pub const HORIZON_MAX_LAGS: f64 = 4.0;
 /// \[s\]: a period of shakes of 2 Hz and faster (docs/decisions/cyclic-factor.md).
 pub const SWING_WINDOW_S: f64 = 0.5;
 
-/// The factor on the safety factor while the load cycles \[-\]
-/// (`tests/load_margin.rs`; docs/decisions/cyclic-factor.md).
-pub const CYCLIC_SAFETY_FACTOR: f64 = 1.45;
-
-/// The factor on the safety factor once the steady ramp is over \[-\]: at `s = 1.35` a
-/// steady hold asks `1.15·N_slip` (docs/decisions/steady-margin.md).
-pub const STEADY_SAFETY_FACTOR: f64 = 0.85;
-
 /// How long the low-passed `N_slip` must stay within a swing's depth of where it settled
 /// before the load is steady \[s\] (docs/decisions/steady-margin.md).
 pub const STEADY_HOLD_S: f64 = 0.3;
-
-/// How long the steady factor takes to fall from 1 to [`STEADY_SAFETY_FACTOR`] \[s\]
-/// (whole ticks, rounded up): eased, not stepped (docs/decisions/steady-ramp.md;
-/// `tests/load_margin.rs::a_steady_hold_ramps_in_the_steady_factor_after_the_hold_time`).
-pub const STEADY_RAMP_S: f64 = 0.5;
 
 /// The rise of tangential load that ends a steady hold \[N\] (`÷ μ` in `N_slip`): half of
 /// [`CYCLE_DEPTH_FLOOR_N`], above a steady hold's filtered noise
@@ -114,9 +101,9 @@ pub(crate) struct Lead<T> {
     steady_factor: T,
     steady_rise: T,
     steady_ticks: u64,
-    /// `1 − STEADY_SAFETY_FACTOR`: the whole of the ramp's cut.
+    /// `1 − steady_factor`: the whole of the ramp's cut.
     steady_cut: T,
-    /// Ticks of the ramp ([`STEADY_RAMP_S`] in whole ticks, rounded up): from this many
+    /// Ticks of the ramp (`steady_ramp_s` in whole ticks, rounded up): from this many
     /// the factor is the steady one.
     ramp_ticks: u64,
     /// `ramp_ticks`, as a number.
@@ -215,10 +202,10 @@ impl<T: Real> Lead<T> {
         extreme_n * self.cycle_depth + self.cycle_floor
     }
 
-    /// The factor on the safety factor: [`CYCLIC_SAFETY_FACTOR`] while the load cycles
-    /// (module docs, "Cyclic loads"), else, while it is steady ("Steady loads"), 1
-    /// ramping down to [`STEADY_SAFETY_FACTOR`] over [`STEADY_RAMP_S`], and 1
-    /// otherwise. Within `[STEADY_SAFETY_FACTOR, CYCLIC_SAFETY_FACTOR]`, never increasing
+    /// The factor on the safety factor: `cyclic_factor` while the load cycles (module
+    /// docs, "Cyclic loads"), else, while it is steady ("Steady loads"), 1 ramping down to
+    /// `steady_factor` over `steady_ramp_s`, and 1 otherwise. Within
+    /// `[steady_factor, cyclic_factor]`, never increasing
     /// along a steady hold.
     #[inline]
     pub(crate) fn safety_factor(&self) -> T {
@@ -238,7 +225,7 @@ impl<T: Real> Lead<T> {
         }
     }
 
-    /// [`CYCLIC_SAFETY_FACTOR`] while the load cycles, 1 otherwise: the factor for a
+    /// `cyclic_factor` while the load cycles, 1 otherwise: the factor for a
     /// contact that has slipped, which keeps its whole margin through a steady hold (the
     /// steady factor, at most 1, gives way to 1; a tick cheaper than
     /// [`Lead::safety_factor`]'s).

@@ -16,8 +16,9 @@ pub use capacity::{
     UTILISATION_MAX,
 };
 pub use config::{
-    Checked, ControllerConfig, FingerShape, Mode, SkewParams, WireMaxLen,
-    DISC_TORSION_SAFETY_FACTOR,
+    Checked, ControllerConfig, FingerShape, Mode, SkewParams, WireMaxLen, CREEP_MARGIN_MAX,
+    CYCLIC_SAFETY_FACTOR, DISC_TORSION_SAFETY_FACTOR, MARGIN_MAX, MARGIN_STEP_GROSS,
+    MARGIN_STEP_INCIPIENT, MU_FLOOR_FRACTION, STEADY_RAMP_S, STEADY_SAFETY_FACTOR, UNTOLD_LAG_S,
 };
 pub use math::{Libm, Micromath, TickMath};
 pub use slip::SlipSignal;

@@ -6,16 +6,16 @@
 //! safety factor) of the last [`LOOKBACK_S`] to 2·[`LOOKBACK_S`]: a sensor reports a slip
 //! after it began. On a signal the controller
 //!
-//! 1. raises the margin by [`MARGIN_STEP_INCIPIENT`] or [`MARGIN_STEP_GROSS`] (at most
-//!    [`MARGIN_MAX`]); the command jumps to the new requirement in the same tick, past the
-//!    rise-rate limit (the *emergency rise*, still capped by `N_max`);
+//! 1. raises the margin by `slip_step_incipient` or `slip_step_gross` (at most
+//!    `slip_margin_max`); the command jumps to the new requirement in the same tick,
+//!    past the rise-rate limit (the *emergency rise*, still capped by `N_max`);
 //! 2. on a gross slip, or an incipient one that persists past a first step of the margin,
-//!    lowers `μ̂ ← μ̂·u` (never above the present `μ̂`, never below [`MU_FLOOR_FRACTION`]
+//!    lowers `μ̂ ← μ̂·u` (never above the present `μ̂`, never below `mu_floor_fraction`
 //!    of the configured `μ`), unless `u` < [`PLAUSIBLE_UTILISATION`] (not a slip of that
 //!    load: margin only);
 //! 3. takes an incipient report at `u` < [`CREEP_UTILISATION`] as *creep* (a soft patch's
 //!    edge sliding long before the contact does): the margin rises at most to
-//!    [`CREEP_MARGIN_MAX`], `μ̂` does not move, and a margin above that cap relaxes toward
+//!    `creep_margin_max`, `μ̂` does not move, and a margin above that cap relaxes toward
 //!    it as it would toward 1 in silence.
 //!
 //! Timing: an incipient report counts once it has lasted [`INCIPIENT_CONFIRM_S`], a gross
@@ -60,25 +60,12 @@ impl SlipSignal {
     }
 }
 
-/// Margin added on a confirmed incipient slip (to a margin that starts at 1) \[-\]
-/// (docs/decisions/slip-response-steps.md).
-pub const MARGIN_STEP_INCIPIENT: f64 = 0.05;
-/// Margin added on a gross slip \[-\] (docs/decisions/slip-response-steps.md).
-pub const MARGIN_STEP_GROSS: f64 = 0.3;
-/// The largest margin \[-\]; the command is capped by `N_max` in any case
-/// (docs/decisions/slip-response-steps.md).
-pub const MARGIN_MAX: f64 = 3.0;
-/// The lowest `μ̂`, as a fraction of the configured `μ` \[-\]
-/// (docs/decisions/slip-response-steps.md).
-pub const MU_FLOOR_FRACTION: f64 = 0.5;
 /// A slip at a utilisation below this is no evidence about `μ` \[-\]: a false alarm or a
 /// load the sensor did not see (`tests/robust_grip.rs::a_false_alarm_does_not_lower_mu`).
 pub const PLAUSIBLE_UTILISATION: f64 = 0.4;
 /// An incipient report at a recent utilisation below this is creep, not slip \[-\]
 /// (`tests/creep.rs`; docs/decisions/slip-response-steps.md).
 pub const CREEP_UTILISATION: f64 = 0.7;
-/// The most margin creep alone can ask for \[-\] (`tests/creep.rs`).
-pub const CREEP_MARGIN_MAX: f64 = 1.1;
 /// How long an incipient report must persist before it counts \[s\]: two ticks at
 /// 1 kHz, the usual debounce of slip detectors (docs/decisions/slip-response-steps.md).
 pub const INCIPIENT_CONFIRM_S: f64 = 0.002;
@@ -294,7 +281,7 @@ impl<T: Real> SlipResponse<T> {
 
     /// A creep tick: a little margin, no evidence about μ. Creep is no slip, so it does
     /// not hold up a margin that a slip raised: after the margin's quiet time it relaxes
-    /// toward [`CREEP_MARGIN_MAX`] as it would toward 1 on a quiet tick. `μ̂` keeps what a
+    /// toward `creep_margin_max` as it would toward 1 on a quiet tick. `μ̂` keeps what a
     /// slip taught while the sensor reports anything (it relaxes only on silence), and
     /// the creep's ticks count toward that silence's quiet time. (Comparisons, not
     /// `min`/`max`: on the Cortex-M4F those are calls.)

@@ -42,38 +42,25 @@ pub struct CyclicPlan {
 /// rows (`cycle = 0`), then each fraction's cycles. An axis whose ramp never slips
 /// records nothing.
 pub fn cyclic(rig: &dyn TimedRig, plan: &CyclicPlan, noise: &mut Noise) -> Vec<CyclicRow> {
-    let mut rows = Vec::new();
-    for axis in [Axis::Force, Axis::Torsion] {
-        let onsets = timed::onsets(rig, plan.normal_n, axis, plan.onsets, noise);
-        let Some(reference) = timed::reference(&onsets) else {
-            continue;
-        };
-        for &(normal, load) in &onsets {
-            let (ft, mn) = on_axis(axis, load);
-            rows.push(CyclicRow {
-                axis,
-                normal_force_n: normal,
-                fraction: 1.0,
-                cycle: 0,
-                tangential_force_n: ft,
-                torsional_moment_nm: mn,
-                slide_m: 0.0,
-                turn_rad: 0.0,
-            });
-        }
-        for &fraction in &plan.fractions {
-            cycles(
-                rig,
-                plan,
-                axis,
-                fraction,
-                fraction * reference,
-                noise,
-                &mut rows,
-            );
-        }
-    }
-    rows
+    let onset_row = |axis, normal, (ft, mn)| CyclicRow {
+        axis,
+        normal_force_n: normal,
+        fraction: 1.0,
+        cycle: 0,
+        tangential_force_n: ft,
+        torsional_moment_nm: mn,
+        slide_m: 0.0,
+        turn_rad: 0.0,
+    };
+    timed::per_axis(
+        rig,
+        plan.normal_n,
+        plan.onsets,
+        &plan.fractions,
+        noise,
+        onset_row,
+        |axis, fraction, peak, noise, rows| cycles(rig, plan, axis, fraction, peak, noise, rows),
+    )
 }
 
 /// One fraction's cycles from fresh contacts, appended to `rows`.
@@ -96,16 +83,14 @@ fn cycles(
             let (ft, mn) = on_axis(axis, peak * 0.5 * (1.0 - phase.cos()));
             now = test.step(ft, mn, TICK_S);
         }
-        let (fa, ma) = (noise.force_n, noise.moment_nm);
-        let normal = noise.apply(plan.normal_n, fa);
-        let (ft, mn) = on_axis(axis, peak);
+        let (normal, ft, mn) = timed::recorded(noise, plan.normal_n, axis, peak);
         let row = CyclicRow {
             axis,
             normal_force_n: normal,
             fraction,
             cycle,
-            tangential_force_n: noise.apply(ft, fa).abs(),
-            torsional_moment_nm: noise.apply(mn, ma).abs(),
+            tangential_force_n: ft,
+            torsional_moment_nm: mn,
             slide_m: noise.apply(now.slide_since(&last), 0.0).abs(),
             turn_rad: noise.apply(now.turn_since(&last), 0.0).abs(),
         };

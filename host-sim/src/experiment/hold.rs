@@ -39,33 +39,29 @@ pub struct HoldPlan {
 /// (`time_s = 0`), then one row per fraction. An axis whose ramp never slips records
 /// nothing.
 pub fn hold(rig: &dyn TimedRig, plan: &HoldPlan, noise: &mut Noise) -> Vec<HoldRow> {
-    let mut rows = Vec::new();
-    for axis in [Axis::Force, Axis::Torsion] {
-        let onsets = timed::onsets(rig, plan.normal_n, axis, plan.onsets, noise);
-        let Some(reference) = timed::reference(&onsets) else {
-            continue;
-        };
-        for &(normal, load) in &onsets {
-            let (ft, mn) = on_axis(axis, load);
-            rows.push(HoldRow {
-                axis,
-                normal_force_n: normal,
-                fraction: 1.0,
-                tangential_force_n: ft,
-                torsional_moment_nm: mn,
-                time_s: 0.0,
-                slide_m: 0.0,
-                turn_rad: 0.0,
-                slide_rate_m_s: 0.0,
-                turn_rate_rad_s: 0.0,
-            });
-        }
-        for &fraction in &plan.fractions {
-            let row = held(rig, plan, axis, fraction, fraction * reference, noise);
-            rows.push(row);
-        }
-    }
-    rows
+    let onset_row = |axis, normal, (ft, mn)| HoldRow {
+        axis,
+        normal_force_n: normal,
+        fraction: 1.0,
+        tangential_force_n: ft,
+        torsional_moment_nm: mn,
+        time_s: 0.0,
+        slide_m: 0.0,
+        turn_rad: 0.0,
+        slide_rate_m_s: 0.0,
+        turn_rate_rad_s: 0.0,
+    };
+    timed::per_axis(
+        rig,
+        plan.normal_n,
+        plan.onsets,
+        &plan.fractions,
+        noise,
+        onset_row,
+        |axis, fraction, load, noise, rows| {
+            rows.push(held(rig, plan, axis, fraction, load, noise));
+        },
+    )
 }
 
 /// What one sustained load did: the slip at the hold's start (at zero load if the plate
@@ -124,15 +120,13 @@ fn held(
     noise: &mut Noise,
 ) -> HoldRow {
     let c = creep(rig, plan, axis, load);
-    let (fa, ma) = (noise.force_n, noise.moment_nm);
-    let normal = noise.apply(plan.normal_n, fa);
-    let (ft, mn) = on_axis(axis, load);
+    let (normal, ft, mn) = timed::recorded(noise, plan.normal_n, axis, load);
     HoldRow {
         axis,
         normal_force_n: normal,
         fraction,
-        tangential_force_n: noise.apply(ft, fa).abs(),
-        torsional_moment_nm: noise.apply(mn, ma).abs(),
+        tangential_force_n: ft,
+        torsional_moment_nm: mn,
         time_s: c.time_s,
         slide_m: noise.apply(c.end.slide_since(&c.start), 0.0).abs(),
         turn_rad: noise.apply(c.end.turn_since(&c.start), 0.0).abs(),

@@ -1,5 +1,6 @@
-//! Timed loading for the margin protocols ([`super::cyclic`], [`super::hold`]): the rig
-//! presses the finger at a fixed normal force on a light plate and loads the plate with a
+//! Timed loading for the margin protocols ([`super::cyclic`], [`super::hold`]), and the
+//! frame they share ([`per_axis`]: each axis's onsets, then a test at each fraction of
+//! them, its loads recorded by [`recorded`]): the rig presses the finger at a fixed normal force on a light plate and loads the plate with a
 //! force-controlled actuator, tangentially (across the cylinder axis, `y`) or about the
 //! contact normal, and reads how far the plate has slipped.
 //!
@@ -185,6 +186,46 @@ pub fn onsets(
         out.push((normal, load.abs()));
     }
     out
+}
+
+/// The margin protocols' frame, shared by [`super::cyclic`] and [`super::hold`]: on each
+/// axis (force, then torsion) the static onset first ([`onsets`]: `repeats` ramps at
+/// `normal_n`), each recorded as `onset_row(axis, N [N], (f_t [N], m_n [N·m]))`, then
+/// `test(axis, fraction, fraction·reference, noise, rows)` for each of `fractions`, the
+/// reference being the onsets' mean ([`reference`]). An axis whose ramp never slips
+/// records nothing.
+pub fn per_axis<R>(
+    rig: &dyn TimedRig,
+    normal_n: f64,
+    repeats: usize,
+    fractions: &[f64],
+    noise: &mut Noise,
+    onset_row: impl Fn(Axis, f64, (f64, f64)) -> R,
+    mut test: impl FnMut(Axis, f64, f64, &mut Noise, &mut Vec<R>),
+) -> Vec<R> {
+    let mut rows = Vec::new();
+    for axis in [Axis::Force, Axis::Torsion] {
+        let onsets = onsets(rig, normal_n, axis, repeats, noise);
+        let Some(reference) = reference(&onsets) else {
+            continue;
+        };
+        for &(normal, load) in &onsets {
+            rows.push(onset_row(axis, normal, on_axis(axis, load)));
+        }
+        for &fraction in fractions {
+            test(axis, fraction, fraction * reference, noise, &mut rows);
+        }
+    }
+    rows
+}
+
+/// A test row's loads as recorded with `noise`: `(N [N], |f_t| [N], |m_n| [N·m])` of
+/// `load` on `axis` at `normal_n`.
+pub fn recorded(noise: &mut Noise, normal_n: f64, axis: Axis, load: f64) -> (f64, f64, f64) {
+    let (fa, ma) = (noise.force_n, noise.moment_nm);
+    let normal = noise.apply(normal_n, fa);
+    let (ft, mn) = on_axis(axis, load);
+    (normal, noise.apply(ft, fa).abs(), noise.apply(mn, ma).abs())
 }
 
 /// The mean of the recorded onsets' loads, `None` without any.

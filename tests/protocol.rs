@@ -588,6 +588,78 @@ fn non_finite_floats_travel_bit_for_bit() {
     assert_eq!(dec.frames_received(), 2);
 }
 
+/// What a configuration's bytes decode to: through `Deserialize` (the hand-written
+/// binary decoding) or through the derived code (`ControllerConfig::deserialize`), as the
+/// configuration's encoding and the number of bytes left, or `None` if refused.
+fn config_decodings(bytes: &[u8]) -> [Option<(Vec<u8>, usize)>; 2] {
+    let by_trait = postcard::take_from_bytes::<ControllerConfig>(bytes)
+        .ok()
+        .map(|(c, rest)| (postcard_of(&c), rest.len()));
+    let mut de = postcard::Deserializer::from_bytes(bytes);
+    let by_derive = ControllerConfig::deserialize(&mut de)
+        .ok()
+        .and_then(|c| Some((postcard_of(&c), de.finalize().ok()?.len())));
+    [by_trait, by_derive]
+}
+
+/// The configuration's binary decoding accepts exactly the bytes the derived one accepts,
+/// as the same configuration bit for bit: every valid encoding, every truncation of one,
+/// every byte of one set to values that matter to varints, tags and variants, and random
+/// bytes (below, `arbitrary_bytes_decode_to_the_derived_configuration`).
+#[test]
+fn the_wire_decodes_a_configuration_as_the_derived_code_does() {
+    let mut rng = XorShift(0x5EED_C0F1_6000_0001);
+    let mut valid = vec![
+        ControllerConfig::default(),
+        config_with_skew(),
+        ControllerConfig {
+            mu: f64::NAN,
+            actuator_slew_n_per_s: f64::INFINITY,
+            gamma: -0.0,
+            force_nodes: 127,
+            quadrature_order: 128,
+            table_samples: 16_383,
+            aspect_count: 16_384,
+            ..config_with_skew()
+        },
+    ];
+    for r in largest_requests() {
+        if let Request::Configure(c) = r {
+            valid.push(c);
+        }
+    }
+    let mut cases = 0;
+    for c in &valid {
+        let bytes = postcard_of(c);
+        let [t, d] = config_decodings(&bytes);
+        assert_eq!(t, Some((bytes.clone(), 0)), "{c:?}");
+        assert_eq!(d, t);
+        let mut long = bytes.clone();
+        long.extend([1, 2, 3]);
+        assert_eq!(config_decodings(&long)[0], Some((bytes.clone(), 3)));
+        for n in 0..bytes.len() {
+            let [t, d] = config_decodings(&bytes[..n]);
+            assert_eq!((t.is_none(), &d), (true, &t), "truncated to {n}");
+            for v in [0u8, 1, 2, 3, 0x7F, 0x80, 0x81, 0xFE, 0xFF] {
+                let mut b = bytes.clone();
+                b[n] = v;
+                let [t, d] = config_decodings(&b);
+                assert_eq!(t, d, "byte {n} set to {v:#x}");
+                cases += 1;
+            }
+            for _ in 0..8 {
+                let mut b = bytes.clone();
+                b[n] = rng.next() as u8;
+                let cut = rng.below(b.len() as u64 + 1) as usize;
+                let [t, d] = config_decodings(&b[..cut]);
+                assert_eq!(t, d, "byte {n} changed, cut at {cut}: {b:?}");
+                cases += 1;
+            }
+        }
+    }
+    assert!(cases > 3000, "{cases}");
+}
+
 #[test]
 fn hello_carries_this_builds_constants() {
     assert_eq!(
@@ -1617,6 +1689,16 @@ fn check_against<const N: usize>(
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn arbitrary_bytes_decode_to_the_derived_configuration(
+        bytes in prop::collection::vec(
+            prop_oneof![4 => any::<u8>(), 1 => Just(0u8), 1 => Just(1u8), 1 => Just(0x80u8)],
+            0..240),
+    ) {
+        let [t, d] = config_decodings(&bytes);
+        prop_assert_eq!(t, d);
+    }
 
     #[test]
     fn arbitrary_bytes_never_panic_and_counters_add_up(

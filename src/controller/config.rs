@@ -5,6 +5,8 @@ use crate::fls::Shape;
 use crate::quadrature::QuadratureOrder;
 use serde::{Deserialize, Serialize};
 
+mod wire;
+
 /// Defines a struct of named fields and, from the same field list, three constants on it:
 /// `FIELDS`, the field names in declaration order, `SCHEMA`, its part of the protocol's
 /// [`SCHEMA`](crate::protocol::SCHEMA) (`Name{field:type,...}`, types as written), and
@@ -207,8 +209,13 @@ with_schema! {
     /// and an unknown key is refused by name (`deny_unknown_fields`); the wire (postcard)
     /// sends every field in this order, and the protocol's
     /// [`SCHEMA`](crate::protocol::SCHEMA) lists them from [`ControllerConfig::SCHEMA`].
+    ///
+    /// The derived serde code is `ControllerConfig::serialize` and
+    /// `ControllerConfig::deserialize` (`remote = "Self"`); the traits' impls call it,
+    /// except that a binary format (the wire) is decoded by a hand-written loop over the
+    /// same fields (`config::wire`).
     #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-    #[serde(default, deny_unknown_fields)]
+    #[serde(remote = "Self", default, deny_unknown_fields)]
     pub struct ControllerConfig {
         /// Coulomb friction coefficient `μ > 0`.
         pub mu: f64,
@@ -315,6 +322,24 @@ with_schema! {
         /// actuator's own samples say otherwise \[s\], `0 ≤ x ≤ 1`: the lead the first rise
         /// gets.
         pub untold_lag_s: f64,
+    }
+}
+
+impl Serialize for ControllerConfig {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        ControllerConfig::serialize(self, s)
+    }
+}
+
+impl<'de> Deserialize<'de> for ControllerConfig {
+    /// Text formats through the derived code (defaults, names, unknown keys refused);
+    /// binary ones, which carry every field in order, through `wire`.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        if d.is_human_readable() {
+            ControllerConfig::deserialize(d)
+        } else {
+            wire::deserialize(d)
+        }
     }
 }
 

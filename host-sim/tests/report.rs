@@ -1,6 +1,9 @@
 //! The report writers of `host-sim simulate`: CSV, SVG plots, JSON summary and tables.
 
-use host_sim::sim::record::{LinkSummary, RunSummary, Sample};
+mod common;
+
+use common::parts;
+use host_sim::sim::record::{CommandParts, LinkSummary, RunSummary, Sample};
 use host_sim::sim::report::*;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -100,16 +103,7 @@ fn unexplained() -> Sample {
         slip_distance_m: 0.0,
         slip_rotation_rad: 0.0,
         status: "none",
-        n_slip_n: f32::NAN,
-        required_n: f32::NAN,
-        mu_hat: f32::NAN,
-        margin: f32::NAN,
-        slip_margin: f32::NAN,
-        load_factor: f32::NAN,
-        lead_n: f32::NAN,
-        n_slip_mu_n: f32::NAN,
-        n_safety_n: f32::NAN,
-        n_load_n: f32::NAN,
+        parts: CommandParts::NONE,
     }
 }
 
@@ -125,16 +119,16 @@ fn explained(n: usize, phase: f64) -> Vec<Sample> {
             1 => (1.0, 1.0, 0.8),
             _ => (1.45, 1.2, 0.7),
         };
-        s.n_slip_mu_n = 2.0;
-        s.n_slip_n = 2.0 * 0.8 / mu_hat;
-        s.n_safety_n = 2.7;
-        s.n_load_n = 2.7 * load_factor;
-        s.required_n = 2.7 * load_factor * slip_margin * 0.8 / mu_hat;
-        s.load_factor = load_factor;
-        s.slip_margin = slip_margin;
-        s.margin = load_factor * slip_margin;
-        s.mu_hat = mu_hat;
-        s.lead_n = 0.1;
+        s.parts.n_slip_mu_n = 2.0;
+        s.parts.n_slip_n = 2.0 * 0.8 / mu_hat;
+        s.parts.n_safety_n = 2.7;
+        s.parts.n_load_n = 2.7 * load_factor;
+        s.parts.required_n = 2.7 * load_factor * slip_margin * 0.8 / mu_hat;
+        s.parts.load_factor = load_factor;
+        s.parts.slip_margin = slip_margin;
+        s.parts.margin = load_factor * slip_margin;
+        s.parts.mu_hat = mu_hat;
+        s.parts.lead_n = 0.1;
     }
     v
 }
@@ -181,22 +175,6 @@ const PARTS: [&str; 10] = [
     "n_safety_n",
     "n_load_n",
 ];
-
-/// A sample's command parts, in the order of [`PARTS`].
-fn parts(s: &Sample) -> [f32; 10] {
-    [
-        s.n_slip_n,
-        s.required_n,
-        s.mu_hat,
-        s.margin,
-        s.slip_margin,
-        s.load_factor,
-        s.lead_n,
-        s.n_slip_mu_n,
-        s.n_safety_n,
-        s.n_load_n,
-    ]
-}
 
 /// The numeric cells of a CSV row as read back.
 fn same(a: f64, b: f64) -> bool {

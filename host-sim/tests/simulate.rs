@@ -1,6 +1,9 @@
 //! The grasp simulator: scenes, effects that are built only when listed, determinism, the
 //! link's accounting, softgrip's command parts in the samples, and the command line.
 
+mod common;
+
+use common::parts;
 use host_sim::sim::controllers::LinkKind;
 use host_sim::sim::record::Sample;
 use host_sim::sim::run::{controller_config, run, run_on};
@@ -121,23 +124,6 @@ fn softgrip_holds_the_basic_lift_and_every_controller_slips_in_the_overload() {
     assert!(s.slip_events > 0);
 }
 
-/// softgrip's command parts of a run's samples, as bits: `[n_slip_n, required_n, mu_hat,
-/// margin, slip_margin, load_factor, lead_n, n_slip_mu_n, n_safety_n, n_load_n]`.
-fn parts(s: &Sample) -> [f32; 10] {
-    [
-        s.n_slip_n,
-        s.required_n,
-        s.mu_hat,
-        s.margin,
-        s.slip_margin,
-        s.load_factor,
-        s.lead_n,
-        s.n_slip_mu_n,
-        s.n_safety_n,
-        s.n_load_n,
-    ]
-}
-
 #[test]
 fn softgrips_samples_say_what_its_command_is_made_of_on_both_links() {
     let scene = Scene::parse(&text("shake")).unwrap();
@@ -151,7 +137,9 @@ fn softgrips_samples_say_what_its_command_is_made_of_on_both_links() {
         // The shake runs from 1.0 to 2.5 s; the controller finds it cyclic within it.
         let shaking = out.samples.iter().filter(|s| (1.0..2.5).contains(&s.t_s));
         assert!(
-            shaking.into_iter().any(|s| s.load_factor == cyclic as f32),
+            shaking
+                .into_iter()
+                .any(|s| s.parts.load_factor == cyclic as f32),
             "{link:?}: the load factor never reached {cyclic}"
         );
         let mut at_target = 0;
@@ -162,17 +150,18 @@ fn softgrips_samples_say_what_its_command_is_made_of_on_both_links() {
                 "{link:?} at {}: {p:?}",
                 s.t_s
             );
-            let product = s.slip_margin * s.load_factor;
-            assert!((s.margin - product).abs() <= 1e-6 * s.margin, "{p:?}");
-            assert!(s.n_slip_n <= s.required_n, "{link:?} at {}: {p:?}", s.t_s);
-            assert!(s.lead_n >= 0.0, "{p:?}");
+            let c = &s.parts;
+            let product = c.slip_margin * c.load_factor;
+            assert!((c.margin - product).abs() <= 1e-6 * c.margin, "{p:?}");
+            assert!(c.n_slip_n <= c.required_n, "{link:?} at {}: {p:?}", s.t_s);
+            assert!(c.lead_n >= 0.0, "{p:?}");
             // The stack: the model, the safety factor, the load factor, the margin.
             assert!(
-                s.n_slip_mu_n <= s.n_safety_n && s.n_load_n <= s.required_n,
+                c.n_slip_mu_n <= c.n_safety_n && c.n_load_n <= c.required_n,
                 "{p:?}"
             );
             // Where the command is the target, the host's required_n is the device's.
-            let target = f64::from(s.required_n.min(n_max) + s.lead_n);
+            let target = f64::from(c.required_n.min(n_max) + c.lead_n);
             if (s.n_cmd_n - target).abs() <= 1e-6 * s.n_cmd_n {
                 at_target += 1;
             }

@@ -40,8 +40,15 @@ pub struct Sample {
     /// The controller's status name (`ok`, `saturated`, ..., or `none` for baselines and
     /// lost replies).
     pub status: &'static str,
-    /// softgrip's `N_slip` at `μ̂`, as its reply says \[N\] (NaN for baselines and ticks
-    /// without a reply, as are all the fields below).
+    /// What softgrip's command is made of: the CSV's last columns, written inline
+    /// ([`CommandParts::NONE`], all NaN, for baselines and ticks without a reply).
+    pub parts: CommandParts,
+}
+
+/// What softgrip's command is made of on one tick ([`Sample::parts`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CommandParts {
+    /// softgrip's `N_slip` at `μ̂`, as its reply says \[N\].
     pub n_slip_n: f32,
     /// softgrip's `N_req` at the safety factor times `margin`, at `μ̂` \[N\]: derived on the
     /// host from the answered frame's load (the reply does not carry it).
@@ -63,32 +70,6 @@ pub struct Sample {
     pub n_safety_n: f32,
     /// `N_req` at the safety factor times `load_factor`, at the configured `μ` \[N\]
     /// (derived).
-    pub n_load_n: f32,
-}
-
-/// What softgrip's command is made of on one tick: the fields of [`Sample`] of the same
-/// names, [`CommandParts::NONE`] (all NaN) for a baseline or a tick without a reply.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CommandParts {
-    /// `N_slip` at `μ̂` \[N\].
-    pub n_slip_n: f32,
-    /// `N_req` at the safety factor times `margin`, at `μ̂` \[N\].
-    pub required_n: f32,
-    /// `μ̂` \[-\].
-    pub mu_hat: f32,
-    /// `slip_margin · load_factor` \[-\].
-    pub margin: f32,
-    /// The slip response's part of `margin` \[-\].
-    pub slip_margin: f32,
-    /// The load's part of `margin` \[-\].
-    pub load_factor: f32,
-    /// The target's lead over `min(required_n, N_max)` \[N\].
-    pub lead_n: f32,
-    /// `N_slip` at the configured `μ` \[N\].
-    pub n_slip_mu_n: f32,
-    /// `N_req` at the safety factor, at `μ` \[N\].
-    pub n_safety_n: f32,
-    /// `N_req` at the safety factor times `load_factor`, at `μ` \[N\].
     pub n_load_n: f32,
 }
 

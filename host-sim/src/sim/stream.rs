@@ -4,7 +4,7 @@
 //! length.
 
 use super::record::Sample;
-use super::report::SAMPLE_CSV_FIELDS;
+use super::report::sample_csv;
 use super::run::SampleSink;
 use super::trace::PlotTrace;
 use std::fs::File;
@@ -16,7 +16,6 @@ use std::path::{Path, PathBuf};
 pub struct RunStream {
     path: PathBuf,
     csv: csv::Writer<BufWriter<File>>,
-    rows: u64,
     /// What the plots get.
     pub trace: PlotTrace,
 }
@@ -26,17 +25,13 @@ impl RunStream {
     pub fn create(path: &Path) -> std::io::Result<Self> {
         Ok(Self {
             path: path.to_path_buf(),
-            csv: csv::Writer::from_writer(BufWriter::new(File::create(path)?)),
-            rows: 0,
+            csv: sample_csv(path)?,
             trace: PlotTrace::new(),
         })
     }
 
     /// Flushes the CSV (a run without ticks still gets the header) and gives the trace.
     pub fn finish(mut self) -> std::io::Result<PlotTrace> {
-        if self.rows == 0 {
-            self.csv.write_record(SAMPLE_CSV_FIELDS)?;
-        }
         self.csv.flush()?;
         Ok(self.trace)
     }
@@ -47,7 +42,6 @@ impl SampleSink for RunStream {
         self.csv
             .serialize(s)
             .map_err(|e| format!("--out: {}: {e}", self.path.display()))?;
-        self.rows += 1;
         self.trace.push(s);
         Ok(())
     }

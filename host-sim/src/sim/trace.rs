@@ -149,6 +149,7 @@ impl PlotTrace {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::record::CommandParts;
 
     fn sample(k: u64, slipping: bool) -> Sample {
         Sample {
@@ -168,16 +169,7 @@ mod tests {
             slip_distance_m: 0.0,
             slip_rotation_rad: 0.0,
             status: "ok",
-            n_slip_n: f32::NAN,
-            required_n: f32::NAN,
-            mu_hat: f32::NAN,
-            margin: f32::NAN,
-            slip_margin: f32::NAN,
-            load_factor: f32::NAN,
-            lead_n: f32::NAN,
-            n_slip_mu_n: f32::NAN,
-            n_safety_n: f32::NAN,
-            n_load_n: f32::NAN,
+            parts: CommandParts::NONE,
         }
     }
 

@@ -1,9 +1,10 @@
 //! What the tests share: whether QEMU and the firmware they need are there, the check of
-//! a generated block of a page, and a run of the `host-sim` binary. Each test binary uses
-//! part of it.
+//! a generated block of a page, a run of the `host-sim` binary, and a sample's command
+//! parts as an array. Each test binary uses part of it.
 #![allow(dead_code)]
 
 use host_sim::link::qemu;
+use host_sim::sim::record::Sample;
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -82,4 +83,22 @@ pub fn check_block(
         markers.0,
         &text[start..end]
     ))
+}
+
+/// softgrip's command parts of a sample, in the CSV's order: `[n_slip_n, required_n,
+/// mu_hat, margin, slip_margin, load_factor, lead_n, n_slip_mu_n, n_safety_n, n_load_n]`.
+pub fn parts(s: &Sample) -> [f32; 10] {
+    let p = &s.parts;
+    [
+        p.n_slip_n,
+        p.required_n,
+        p.mu_hat,
+        p.margin,
+        p.slip_margin,
+        p.load_factor,
+        p.lead_n,
+        p.n_slip_mu_n,
+        p.n_safety_n,
+        p.n_load_n,
+    ]
 }

@@ -32,7 +32,7 @@ const BAND_COLOURS: [RGBColor; 6] = [
 /// softgrip's parts (a finite `required_n`; the baselines' are NaN).
 pub(super) fn explained_run(runs: &[(&str, &[Sample])]) -> Option<usize> {
     runs.iter()
-        .position(|(_, s)| s.iter().any(|s| s.required_n.is_finite()))
+        .position(|(_, s)| s.iter().any(|s| s.parts.required_n.is_finite()))
 }
 
 /// `samples` with each tick that had no reply (its parts NaN) given the last reply's
@@ -42,21 +42,12 @@ pub(super) fn held(samples: &[Sample]) -> Vec<Sample> {
     let mut out = Vec::with_capacity(samples.len());
     for s in samples {
         match last {
-            Some(l) if s.mu_hat.is_nan() => out.push(Sample {
-                n_slip_n: l.n_slip_n,
-                required_n: l.required_n,
-                mu_hat: l.mu_hat,
-                margin: l.margin,
-                slip_margin: l.slip_margin,
-                load_factor: l.load_factor,
-                lead_n: l.lead_n,
-                n_slip_mu_n: l.n_slip_mu_n,
-                n_safety_n: l.n_safety_n,
-                n_load_n: l.n_load_n,
+            Some(l) if s.parts.mu_hat.is_nan() => out.push(Sample {
+                parts: l.parts,
                 ..*s
             }),
             _ => {
-                if !s.mu_hat.is_nan() {
+                if !s.parts.mu_hat.is_nan() {
                     last = Some(*s);
                 }
                 out.push(*s);
@@ -69,7 +60,8 @@ pub(super) fn held(samples: &[Sample]) -> Vec<Sample> {
 /// The sample's levels `[n_slip_mu_n, n_safety_n, n_load_n, required_n]` \[N\], if all are
 /// finite.
 fn levels(s: &Sample) -> Option<[f64; 4]> {
-    let l = [s.n_slip_mu_n, s.n_safety_n, s.n_load_n, s.required_n].map(f64::from);
+    let p = &s.parts;
+    let l = [p.n_slip_mu_n, p.n_safety_n, p.n_load_n, p.required_n].map(f64::from);
     (s.t_s.is_finite() && l.iter().all(|x| x.is_finite())).then_some(l)
 }
 
@@ -83,7 +75,7 @@ fn band(k: usize, s: &Sample) -> Option<(f64, f64)> {
         3 => Some((load.min(safety), safety)),
         4 => Some((load, required)),
         _ => {
-            let lead = f64::from(s.lead_n);
+            let lead = f64::from(s.parts.lead_n);
             (s.status != "saturated" && lead.is_finite()).then_some((required, required + lead))
         }
     }
@@ -97,16 +89,16 @@ fn label(k: usize, name: &str, samples: &[Sample]) -> String {
     let what = match k {
         0 => "N_slip at μ (the model)".to_string(),
         1 => "× safety factor (and the disc factor β on torsion)".to_string(),
-        2 => format!("× load factor (up to {:.2})", max(|s| s.load_factor)),
+        2 => format!("× load factor (up to {:.2})", max(|s| s.parts.load_factor)),
         3 => format!(
             "× load factor (down to {:.2}): given back",
-            min(|s| s.load_factor)
+            min(|s| s.parts.load_factor)
         ),
         4 => {
-            let lowered = min(|s| s.mu_hat) < max(|s| s.mu_hat);
+            let lowered = min(|s| s.parts.mu_hat) < max(|s| s.parts.mu_hat);
             format!(
                 "× slip margin (up to {:.2}){}",
-                max(|s| s.slip_margin),
+                max(|s| s.parts.slip_margin),
                 if lowered { ", μ/μ̂" } else { "" }
             )
         }

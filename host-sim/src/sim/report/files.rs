@@ -8,14 +8,22 @@ use super::*;
 /// the non-finite ones), `slipping` as `true`/`false`. An empty `samples` still gets the
 /// header.
 pub fn write_csv(path: &Path, samples: &[Sample]) -> io::Result<()> {
-    let mut w = csv::Writer::from_writer(BufWriter::new(File::create(path)?));
-    if samples.is_empty() {
-        w.write_record(SAMPLE_CSV_FIELDS)?;
-    }
+    let mut w = sample_csv(path)?;
     for s in samples {
         w.serialize(s)?;
     }
     w.flush()
+}
+
+/// Creates (truncates) a sample CSV at `path` and writes its header, [`SAMPLE_CSV_FIELDS`]
+/// (written here, not by `csv` from the first row: its header writer refuses the nested
+/// [`Sample::parts`], whose fields its rows write inline).
+pub fn sample_csv(path: &Path) -> io::Result<csv::Writer<BufWriter<File>>> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(BufWriter::new(File::create(path)?));
+    w.write_record(SAMPLE_CSV_FIELDS)?;
+    Ok(w)
 }
 
 #[derive(Serialize)]

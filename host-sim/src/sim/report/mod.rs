@@ -1,7 +1,8 @@
 //! What `host-sim simulate` writes: the per-tick time series as CSV, two SVG plots, a
 //! JSON summary of the runs, and text tables for the terminal.
 //!
-//! - [`write_csv`]: one row per [`Sample`], header = the field names of [`Sample`].
+//! - [`write_csv`]: one row per [`Sample`], header = the field names of [`Sample`] (those
+//!   of its [`Sample::parts`] in its place).
 //! - [`plot_surface`]: the load in normalised coordinates against the limit surface.
 //! - [`plot_force`]: the applied normal force over time, slip intervals as bars below, and
 //!   under softgrip's line the force each part of its command asks (`bands.rs`).
@@ -36,7 +37,8 @@ pub use force_plot::*;
 pub use surface_plot::*;
 pub use tables::*;
 
-/// The CSV header [`write_csv`] writes: the field names of [`Sample`], in declaration order.
+/// The CSV header [`write_csv`] writes: the field names of [`Sample`], in declaration order,
+/// those of its [`Sample::parts`] in its place.
 pub const SAMPLE_CSV_FIELDS: [&str; 26] = [
     "t_s",
     "ft_n",

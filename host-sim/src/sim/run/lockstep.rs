@@ -275,15 +275,6 @@ fn sample(
         slip_distance_m: dist,
         slip_rotation_rad: rot,
         status,
-        n_slip_n: p.n_slip_n,
-        required_n: p.required_n,
-        mu_hat: p.mu_hat,
-        margin: p.margin,
-        slip_margin: p.slip_margin,
-        load_factor: p.load_factor,
-        lead_n: p.lead_n,
-        n_slip_mu_n: p.n_slip_mu_n,
-        n_safety_n: p.n_safety_n,
-        n_load_n: p.n_load_n,
+        parts: p,
     }
 }

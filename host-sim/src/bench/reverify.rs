@@ -18,18 +18,14 @@
 //! defaults; it is meant for a change that keeps every output bit-identical (a refactor),
 //! where rerunning the whole run would only spend hours to say the same.
 
-use super::families::{self, Ranges};
 use super::shard::{Key, SweepKey};
 use super::stats;
 use super::summary;
 use super::sweep::{Sweep, TrialResult, SWEEPS};
-use super::trial_finger::{BenchPlant, FingerSource};
-use super::{BenchLink, BenchOptions};
-use crate::experiment::FingerSpec;
+use super::BenchOptions;
 use crate::provenance::{self, Provenance};
 use crate::sim::controllers::ControllerKind;
 use serde_json::Value;
-use softgrip::controller::FingerShape;
 use std::path::Path;
 
 /// This build's sweep of the controller `k` names, refused unless its grid and its
@@ -65,70 +61,15 @@ fn defaults_only(sw: Sweep) -> Sweep {
     Sweep { values, ..sw }
 }
 
-/// The trials' fingers a key records.
-fn source_of(key: &Key) -> Result<FingerSource, String> {
-    if let Some([shape, mu, k, c, gamma, half_length_m]) = key.finger {
-        let shape = if shape == 1.0 {
-            FingerShape::Disc
-        } else {
-            FingerShape::Rect
-        };
-        return Ok(FingerSource::Fixed(FingerSpec {
-            shape,
-            mu,
-            k,
-            c,
-            gamma,
-            half_length_m,
-            skew: None,
-        }));
-    }
-    match key.plant.as_str() {
-        "brush" => Ok(FingerSource::Drawn(BenchPlant::Brush)),
-        "fls" => Ok(FingerSource::Drawn(BenchPlant::Fls)),
-        other => Err(format!("the key's plant {other} is not brush or fls")),
-    }
-}
-
 /// The options of the whole bench `key` describes, as this build runs it; refused
 /// unless this build's key of them is `key` itself.
 fn whole_options(key: &Key, out: &Path, quiet: bool) -> Result<BenchOptions, String> {
-    let families = key
-        .families
+    let sweeps = key
+        .sweeps
         .iter()
-        .map(|f| {
-            families::NAMES
-                .iter()
-                .copied()
-                .find(|n| n == f)
-                .ok_or_else(|| format!("the key's family {f} is not one of this build's"))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    let link = match key.link.as_str() {
-        "direct" => BenchLink::Direct,
-        "pty" => BenchLink::Pty,
-        other => return Err(format!("the key's link {other} is not direct or pty")),
-    };
-    let opts = BenchOptions {
-        families,
-        sweeps: key
-            .sweeps
-            .iter()
-            .map(this_builds_sweep)
-            .collect::<Result<_, _>>()?,
-        source: source_of(key)?,
-        ranges: Ranges {
-            hard: key.hard,
-            tell_actuator: key.tell_actuator,
-        },
-        trials: key.trials,
-        seeds: key.seeds.clone(),
-        shard: None,
-        link,
-        out: out.to_path_buf(),
-        trace: false,
-        quiet,
-    };
+        .map(this_builds_sweep)
+        .collect::<Result<_, _>>()?;
+    let opts = key.options(sweeps, out, quiet)?;
     if Key::of(&opts) != *key {
         return Err(format!(
             "this build cannot run the bench the key describes (it would record {:?})",

@@ -27,9 +27,10 @@
 
 use super::families::Ranges;
 use super::sweep::{RunRow, Sweep, TrialResult, SWEEPS};
-use super::trial_finger::FingerSource;
+use super::trial_finger::{BenchPlant, FingerSource};
 use super::{BenchError, BenchLink, BenchOptions};
 use serde::{Deserialize, Serialize};
+use softgrip::controller::FingerShape;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -135,8 +136,8 @@ impl Key {
             finger: match opts.source {
                 FingerSource::Fixed(s) => Some([
                     match s.shape {
-                        softgrip::controller::FingerShape::Rect => 0.0,
-                        softgrip::controller::FingerShape::Disc => 1.0,
+                        FingerShape::Rect => 0.0,
+                        FingerShape::Disc => 1.0,
                     },
                     s.mu,
                     s.k,
@@ -212,19 +213,75 @@ pub fn write(
     Ok(path)
 }
 
-/// The options a key describes (the plant's source, the families and sweeps by name),
-/// writing to `out`; or what in the key this build does not know.
-fn options_of(key: &Key, out: &Path) -> Result<BenchOptions, String> {
-    let families = key
-        .families
-        .iter()
-        .map(|f| {
-            super::families::NAMES
-                .into_iter()
-                .find(|n| n == f)
-                .ok_or_else(|| format!("unknown family \"{f}\""))
+impl Key {
+    /// The options the key describes, writing to `out`: its families by name, the trials'
+    /// fingers (`finger`'s, its shape 1 a disc and else a rectangle, or those drawn on its
+    /// plant) and its link, with `sweeps` as the caller resolves the key's (a shard merge
+    /// by grid, reverify by grid and default); or what in the key this build does not know.
+    /// Shared by a shard merge and `bench reverify` ([`super::reverify`]).
+    pub(super) fn options(
+        &self,
+        sweeps: Vec<Sweep>,
+        out: &Path,
+        quiet: bool,
+    ) -> Result<BenchOptions, String> {
+        let families = self
+            .families
+            .iter()
+            .map(|f| {
+                super::families::NAMES
+                    .into_iter()
+                    .find(|n| n == f)
+                    .ok_or_else(|| format!("the key's family {f} is not one of this build's"))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let source = match (self.plant.as_str(), self.finger) {
+            (_, Some([shape, mu, k, c, gamma, half_length_m])) => {
+                FingerSource::Fixed(crate::experiment::FingerSpec {
+                    shape: if shape == 1.0 {
+                        FingerShape::Disc
+                    } else {
+                        FingerShape::Rect
+                    },
+                    mu,
+                    k,
+                    c,
+                    gamma,
+                    half_length_m,
+                    skew: None,
+                })
+            }
+            ("brush", None) => FingerSource::Drawn(BenchPlant::Brush),
+            ("fls", None) => FingerSource::Drawn(BenchPlant::Fls),
+            (p, None) => return Err(format!("the key's plant {p} is not brush or fls")),
+        };
+        let link = match self.link.as_str() {
+            "direct" => BenchLink::Direct,
+            "pty" => BenchLink::Pty,
+            other => return Err(format!("the key's link {other} is not direct or pty")),
+        };
+        Ok(BenchOptions {
+            families,
+            sweeps,
+            source,
+            ranges: Ranges {
+                hard: self.hard,
+                tell_actuator: self.tell_actuator,
+            },
+            trials: self.trials,
+            seeds: self.seeds.clone(),
+            shard: None,
+            link,
+            out: out.to_path_buf(),
+            trace: false,
+            quiet,
         })
-        .collect::<Result<Vec<_>, _>>()?;
+    }
+}
+
+/// The options a key describes, its sweeps found by controller and grid, writing to
+/// `out`; or what in the key this build does not know.
+fn options_of(key: &Key, out: &Path) -> Result<BenchOptions, String> {
     let sweeps = key
         .sweeps
         .iter()
@@ -236,46 +293,7 @@ fn options_of(key: &Key, out: &Path) -> Result<BenchOptions, String> {
                 .ok_or_else(|| format!("no sweep of {} with those values", k.controller))
         })
         .collect::<Result<Vec<Sweep>, _>>()?;
-    let source = match (key.plant.as_str(), key.finger) {
-        (_, Some([shape, mu, k, c, gamma, l])) => {
-            FingerSource::Fixed(crate::experiment::FingerSpec {
-                shape: if shape == 0.0 {
-                    softgrip::controller::FingerShape::Rect
-                } else {
-                    softgrip::controller::FingerShape::Disc
-                },
-                mu,
-                k,
-                c,
-                gamma,
-                half_length_m: l,
-                skew: None,
-            })
-        }
-        ("brush", None) => FingerSource::Drawn(super::trial_finger::BenchPlant::Brush),
-        ("fls", None) => FingerSource::Drawn(super::trial_finger::BenchPlant::Fls),
-        (p, None) => return Err(format!("unknown plant \"{p}\"")),
-    };
-    Ok(BenchOptions {
-        families,
-        sweeps,
-        source,
-        ranges: Ranges {
-            hard: key.hard,
-            tell_actuator: key.tell_actuator,
-        },
-        trials: key.trials,
-        seeds: key.seeds.clone(),
-        shard: None,
-        link: if key.link == "pty" {
-            BenchLink::Pty
-        } else {
-            BenchLink::Direct
-        },
-        out: out.to_path_buf(),
-        trace: false,
-        quiet: true,
-    })
+    key.options(sweeps, out, true)
 }
 
 /// The names of the options in which two keys differ.

@@ -13,7 +13,7 @@ mod common;
 
 use host_sim::experiment::cyclic::{self, CyclicPlan};
 use host_sim::experiment::hold::{self, HoldPlan};
-use host_sim::experiment::timed::TimedRig;
+use host_sim::experiment::timed::{Frame, TimedRig};
 use host_sim::experiment::{FingerSpec, FlsRig, Noise};
 use host_sim::sim::finger::Finger;
 use softgrip::controller::FingerShape;
@@ -28,18 +28,22 @@ fn plans() -> (CyclicPlan, HoldPlan) {
     let fractions = cyclic::DEFAULT_FRACTIONS.to_vec();
     (
         CyclicPlan {
-            normal_n: 2.0,
-            fractions: fractions.clone(),
+            frame: Frame {
+                normal_n: 2.0,
+                fractions: fractions.clone(),
+                onsets: 2,
+            },
             cycles: cyclic::DEFAULT_CYCLES,
             frequency_hz: cyclic::DEFAULT_FREQUENCY_HZ,
-            onsets: 2,
         },
         HoldPlan {
-            normal_n: 2.0,
-            fractions,
+            frame: Frame {
+                normal_n: 2.0,
+                fractions,
+                onsets: 2,
+            },
             ramp_s: hold::DEFAULT_RAMP_S,
             hold_s: hold::DEFAULT_HOLD_S,
-            onsets: 2,
         },
     )
 }
@@ -255,9 +259,9 @@ fn on_the_brush_fingers_the_cyclic_share_is_below_one() {
 #[test]
 fn the_rows_are_the_same_for_a_seed() {
     let (mut cp, mut hp) = plans();
-    cp.fractions = vec![0.8, 0.9];
+    cp.frame.fractions = vec![0.8, 0.9];
     cp.cycles = 3;
-    hp.fractions = vec![0.9, 1.0];
+    hp.frame.fractions = vec![0.9, 1.0];
     let cases = brush_cases();
     let finger = brush(&cases[0].toml);
     let rigs: [&dyn TimedRig; 2] = [&fls(FingerShape::Rect), &finger];

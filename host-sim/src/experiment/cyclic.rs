@@ -12,7 +12,7 @@
 //! rig's simulated time, one plant step per [`TICK_S`], and two onset ramps per repeat.
 
 use super::protocol::Noise;
-use super::timed::{self, on_axis, Slip, TimedRig, TICK_S};
+use super::timed::{self, on_axis, Frame, Slip, TimedRig, TICK_S};
 use softgrip_calibrate::margin_csv::{Axis, CyclicRow};
 
 /// The default fractions of the onset (docs/decisions/margin-protocols.md).
@@ -26,16 +26,13 @@ pub const DEFAULT_FREQUENCY_HZ: f64 = 4.0;
 /// What the protocol runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CyclicPlan {
-    /// The normal force \[N\].
-    pub normal_n: f64,
-    /// The peaks, as fractions of the measured onset.
-    pub fractions: Vec<f64>,
+    /// The normal force, the peaks (as fractions of the measured onset) and the onset
+    /// ramps per axis.
+    pub frame: Frame,
     /// Cycles per fraction.
     pub cycles: usize,
     /// Cycle frequency \[Hz\].
     pub frequency_hz: f64,
-    /// Onset ramps per axis.
-    pub onsets: usize,
 }
 
 /// The rows of the cyclic protocol on `rig`, recorded with `noise`: per axis, its onset
@@ -54,9 +51,7 @@ pub fn cyclic(rig: &dyn TimedRig, plan: &CyclicPlan, noise: &mut Noise) -> Vec<C
     };
     timed::per_axis(
         rig,
-        plan.normal_n,
-        plan.onsets,
-        &plan.fractions,
+        &plan.frame,
         noise,
         onset_row,
         |axis, fraction, peak, noise, rows| cycles(rig, plan, axis, fraction, peak, noise, rows),
@@ -73,7 +68,7 @@ fn cycles(
     noise: &mut Noise,
     rows: &mut Vec<CyclicRow>,
 ) {
-    let mut test = rig.fresh(plan.normal_n);
+    let mut test = rig.fresh(plan.frame.normal_n);
     let ticks = ((1.0 / (plan.frequency_hz * TICK_S)).round() as usize).max(2);
     let mut last = Slip::default();
     for cycle in 1..=plan.cycles {
@@ -83,7 +78,7 @@ fn cycles(
             let (ft, mn) = on_axis(axis, peak * 0.5 * (1.0 - phase.cos()));
             now = test.step(ft, mn, TICK_S);
         }
-        let (normal, ft, mn) = timed::recorded(noise, plan.normal_n, axis, peak);
+        let (normal, ft, mn) = timed::recorded(noise, plan.frame.normal_n, axis, peak);
         let row = CyclicRow {
             axis,
             normal_force_n: normal,

@@ -12,7 +12,7 @@
 //! simulated time, one plant step per [`TICK_S`], and two onset ramps per repeat.
 
 use super::protocol::Noise;
-use super::timed::{self, on_axis, Slip, TimedRig, TICK_S};
+use super::timed::{self, on_axis, Frame, Slip, TimedRig, TICK_S};
 use softgrip_calibrate::margin_csv::{Axis, HoldRow};
 
 /// The default ramp to the load \[s\] (docs/decisions/margin-protocols.md).
@@ -23,16 +23,13 @@ pub const DEFAULT_HOLD_S: f64 = 1.5;
 /// What the protocol runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HoldPlan {
-    /// The normal force \[N\].
-    pub normal_n: f64,
-    /// The held loads, as fractions of the measured onset.
-    pub fractions: Vec<f64>,
+    /// The normal force, the held loads (as fractions of the measured onset) and the
+    /// onset ramps per axis.
+    pub frame: Frame,
     /// The ramp to the load \[s\].
     pub ramp_s: f64,
     /// The hold \[s\].
     pub hold_s: f64,
-    /// Onset ramps per axis.
-    pub onsets: usize,
 }
 
 /// The rows of the hold protocol on `rig`, recorded with `noise`: per axis, its onset rows
@@ -53,9 +50,7 @@ pub fn hold(rig: &dyn TimedRig, plan: &HoldPlan, noise: &mut Noise) -> Vec<HoldR
     };
     timed::per_axis(
         rig,
-        plan.normal_n,
-        plan.onsets,
-        &plan.fractions,
+        &plan.frame,
         noise,
         onset_row,
         |axis, fraction, load, noise, rows| {
@@ -77,7 +72,7 @@ struct Creep {
 
 /// Ramps fresh contacts to `load` on `axis` and holds it.
 fn creep(rig: &dyn TimedRig, plan: &HoldPlan, axis: Axis, load: f64) -> Creep {
-    let mut test = rig.fresh(plan.normal_n);
+    let mut test = rig.fresh(plan.frame.normal_n);
     let ramp = (plan.ramp_s / TICK_S).round() as usize;
     let hold = ((plan.hold_s / TICK_S).round() as usize).max(4);
     let window = hold / 4;
@@ -120,7 +115,7 @@ fn held(
     noise: &mut Noise,
 ) -> HoldRow {
     let c = creep(rig, plan, axis, load);
-    let (normal, ft, mn) = timed::recorded(noise, plan.normal_n, axis, load);
+    let (normal, ft, mn) = timed::recorded(noise, plan.frame.normal_n, axis, load);
     HoldRow {
         axis,
         normal_force_n: normal,

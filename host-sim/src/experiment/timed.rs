@@ -188,31 +188,40 @@ pub fn onsets(
     out
 }
 
+/// What the margin protocols share of their plan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// The normal force \[N\].
+    pub normal_n: f64,
+    /// The tests' loads, as fractions of the measured onset.
+    pub fractions: Vec<f64>,
+    /// Onset ramps per axis.
+    pub onsets: usize,
+}
+
 /// The margin protocols' frame, shared by [`super::cyclic`] and [`super::hold`]: on each
-/// axis (force, then torsion) the static onset first ([`onsets`]: `repeats` ramps at
-/// `normal_n`), each recorded as `onset_row(axis, N [N], (f_t [N], m_n [N·m]))`, then
-/// `test(axis, fraction, fraction·reference, noise, rows)` for each of `fractions`, the
-/// reference being the onsets' mean ([`reference`]). An axis whose ramp never slips
-/// records nothing.
+/// axis (force, then torsion) the static onset first ([`onsets`]: `frame.onsets` ramps at
+/// `frame.normal_n`), each recorded as `onset_row(axis, N [N], (f_t [N], m_n [N·m]))`,
+/// then `test(axis, fraction, fraction·reference, noise, rows)` for each of the frame's
+/// fractions, the reference being the onsets' mean ([`reference`]). An axis whose ramp
+/// never slips records nothing.
 pub fn per_axis<R>(
     rig: &dyn TimedRig,
-    normal_n: f64,
-    repeats: usize,
-    fractions: &[f64],
+    frame: &Frame,
     noise: &mut Noise,
     onset_row: impl Fn(Axis, f64, (f64, f64)) -> R,
     mut test: impl FnMut(Axis, f64, f64, &mut Noise, &mut Vec<R>),
 ) -> Vec<R> {
     let mut rows = Vec::new();
     for axis in [Axis::Force, Axis::Torsion] {
-        let onsets = onsets(rig, normal_n, axis, repeats, noise);
+        let onsets = onsets(rig, frame.normal_n, axis, frame.onsets, noise);
         let Some(reference) = reference(&onsets) else {
             continue;
         };
         for &(normal, load) in &onsets {
             rows.push(onset_row(axis, normal, on_axis(axis, load)));
         }
-        for &fraction in fractions {
+        for &fraction in &frame.fractions {
             test(axis, fraction, fraction * reference, noise, &mut rows);
         }
     }

@@ -5,7 +5,7 @@
 use super::{finger, usage, write, ExperimentArgs, Kind, Plant};
 use crate::experiment::cyclic::{self, CyclicPlan};
 use crate::experiment::hold::{self, HoldPlan};
-use crate::experiment::timed::TimedRig;
+use crate::experiment::timed::{Frame, TimedRig};
 use crate::experiment::{FingerSpec, FlsRig, Noise};
 use crate::input::short_num;
 use crate::plot::{plot_panels, Panel, Series};
@@ -97,13 +97,16 @@ pub fn run(args: &ExperimentArgs, spec: FingerSpec) -> Result<(), CliError> {
         args.seed,
     );
     let out = &args.out;
+    let frame = Frame {
+        normal_n: n,
+        fractions,
+        onsets: args.repeats,
+    };
     let written = if args.kind == Kind::Cyclic {
         let plan = CyclicPlan {
-            normal_n: n,
-            fractions,
+            frame,
             cycles: m.cycles,
             frequency_hz: m.cycle_hz,
-            onsets: args.repeats,
         };
         let rows = cyclic::cyclic(rig.as_ref(), &plan, &mut noise);
         [
@@ -112,11 +115,9 @@ pub fn run(args: &ExperimentArgs, spec: FingerSpec) -> Result<(), CliError> {
         ]
     } else {
         let plan = HoldPlan {
-            normal_n: n,
-            fractions,
+            frame,
             ramp_s: m.ramp_s,
             hold_s: m.hold_s,
-            onsets: args.repeats,
         };
         let rows = hold::hold(rig.as_ref(), &plan, &mut noise);
         [

@@ -6,7 +6,7 @@ use super::{finger, usage, write, ExperimentArgs, Kind, Plant};
 use crate::experiment::cyclic::{self, CyclicPlan};
 use crate::experiment::hold::{self, HoldPlan};
 use crate::experiment::timed::{Frame, TimedRig};
-use crate::experiment::{FingerSpec, FlsRig, Noise};
+use crate::experiment::{FingerSpec, FlsRig};
 use crate::input::short_num;
 use crate::plot::{plot_panels, Panel, Series};
 use crate::CliError;
@@ -87,15 +87,7 @@ pub fn run(args: &ExperimentArgs, spec: FingerSpec) -> Result<(), CliError> {
         Plant::Fls => Box::new(FlsRig::new(spec, n, n).map_err(|e| usage(format!("finger: {e}")))?),
         Plant::Brush => Box::new(finger::brush(&args.finger)?),
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
-    let mut noise = Noise::new(
-        args.noise,
-        args.noise_force,
-        args.noise_moment,
-        args.noise_width,
-        args.seed,
-    );
+    let mut noise = super::start(args)?;
     let out = &args.out;
     let frame = Frame {
         normal_n: n,

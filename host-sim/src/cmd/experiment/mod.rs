@@ -180,6 +180,20 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<PathBuf, CliError> {
     Ok(path)
 }
 
+/// What every experiment does before its rows: creates `--out`, and gives the noise the
+/// rows are recorded with.
+fn start(args: &ExperimentArgs) -> Result<Noise, CliError> {
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
+    Ok(Noise::new(
+        args.noise,
+        args.noise_force,
+        args.noise_moment,
+        args.noise_width,
+        args.seed,
+    ))
+}
+
 /// Runs the experiment.
 pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
     check_args(args)?;
@@ -197,15 +211,7 @@ pub fn run(args: &ExperimentArgs) -> Result<(), CliError> {
         }
         Plant::Brush => Box::new(finger::brush(&args.finger)?),
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::Failed(format!("--out: {}: {e}", args.out.display())))?;
-    let mut noise = Noise::new(
-        args.noise,
-        args.noise_force,
-        args.noise_moment,
-        args.noise_width,
-        args.seed,
-    );
+    let mut noise = start(args)?;
     let (f, r, out) = (&args.forces, args.repeats, &args.out);
     let mut written = Vec::new();
     if matches!(args.kind, Kind::Indentation | Kind::All) {

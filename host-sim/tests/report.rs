@@ -188,7 +188,7 @@ fn csv_has_header_and_every_sample_round_trips() {
     let mut data = explained(500, 0.0);
     data[3].t_s = 0.1 + 0.2; // not exactly representable in few digits
     data[4].a_true_m = 1.0 / 3.0;
-    data[5].required_n = 1.0 / 3.0;
+    data[5].parts.required_n = 1.0 / 3.0;
     data[6] = Sample {
         t_s: 6e-3,
         ..unexplained()

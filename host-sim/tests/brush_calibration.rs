@@ -12,6 +12,8 @@
 //! figures:
 //! `cargo test --release -p host-sim --test brush_calibration -- --nocapture`.
 
+mod common;
+
 use host_sim::experiment::protocol::{all, DEFAULT_RATIOS_M};
 use host_sim::experiment::{Noise, Rig};
 use host_sim::sim::finger::Finger;
@@ -237,66 +239,12 @@ fn figures(name: &str, cal: &Calibration, o: &Outcomes) -> Figures {
     }
 }
 
-const SOFT: (&str, &str, f64) = (
-    "soft hemicylinder",
-    r#"
-        [finger]
-        model = "brush"
-        shape = "rect"
-        mu = 0.8
-        half_length_m = 0.01
-        young_modulus_pa = 3e5
-        [finger.brush]
-        radius_m = 0.01
-        layer_thickness_m = 0.003
-        mu_kinetic = 0.7
-        height_m = 0.003
-        "#,
-    0.01,
-);
-
-const STIFF: (&str, &str, f64) = (
-    "stiff hemicylinder",
-    r#"
-        [finger]
-        model = "brush"
-        shape = "rect"
-        mu = 0.6
-        half_length_m = 0.008
-        young_modulus_pa = 2e6
-        [finger.brush]
-        radius_m = 0.008
-        layer_thickness_m = 0.002
-        stiffening_exponent = 1.5
-        mu_kinetic = 0.55
-        height_m = 0.002
-        "#,
-    0.008,
-);
-
-const SPHERE: (&str, &str, f64) = (
-    "hemisphere",
-    r#"
-        [finger]
-        model = "brush"
-        shape = "disc"
-        mu = 1.0
-        young_modulus_pa = 5e5
-        [finger.brush]
-        radius_m = 0.009
-        layer_thickness_m = 0.003
-        mu_kinetic = 0.9
-        height_m = 0.003
-        "#,
-    0.01,
-);
-
 /// The three fingers, calibrated and checked in parallel; then the figures quoted by
 /// docs/calibration.md's table and the README are these.
 #[test]
 fn calibrated_on_three_brush_fingers_softgrip_asks_at_most_the_fit_error_less() {
     let figures: Vec<Figures> = std::thread::scope(|s| {
-        let runs: Vec<_> = [SOFT, STIFF, SPHERE]
+        let runs: Vec<_> = common::BRUSH_FINGERS
             .into_iter()
             .map(|(name, toml, l)| s.spawn(move || check(name, toml, l)))
             .collect();

@@ -41,61 +41,6 @@ mu_kinetic = 0.8
 height_m = 0.003
 "#;
 
-/// The brush fingers of `brush_calibration.rs`: name, finger, half-length [m].
-const BRUSH: [(&str, &str, f64); 3] = [
-    (
-        "soft hemicylinder",
-        r#"
-        [finger]
-        model = "brush"
-        shape = "rect"
-        mu = 0.8
-        half_length_m = 0.01
-        young_modulus_pa = 3e5
-        [finger.brush]
-        radius_m = 0.01
-        layer_thickness_m = 0.003
-        mu_kinetic = 0.7
-        height_m = 0.003
-        "#,
-        0.01,
-    ),
-    (
-        "stiff hemicylinder",
-        r#"
-        [finger]
-        model = "brush"
-        shape = "rect"
-        mu = 0.6
-        half_length_m = 0.008
-        young_modulus_pa = 2e6
-        [finger.brush]
-        radius_m = 0.008
-        layer_thickness_m = 0.002
-        stiffening_exponent = 1.5
-        mu_kinetic = 0.55
-        height_m = 0.002
-        "#,
-        0.008,
-    ),
-    (
-        "hemisphere",
-        r#"
-        [finger]
-        model = "brush"
-        shape = "disc"
-        mu = 1.0
-        young_modulus_pa = 5e5
-        [finger.brush]
-        radius_m = 0.009
-        layer_thickness_m = 0.003
-        mu_kinetic = 0.9
-        height_m = 0.003
-        "#,
-        0.01,
-    ),
-];
-
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!(
         "softgrip-contradiction-{}-{name}",
@@ -281,11 +226,11 @@ fn brush_rows(
     all(rig, &FORCES, repeats, &DEFAULT_RATIOS_M, &mut noise)
 }
 
-/// The brush finger `i` of [`BRUSH`]: noisy (2 %, twice per force) and noise-free rows
-/// at its own shape and half-length do not warn; the noise-free misfit stays under half
-/// of [`MATERIAL_RMS`]. The soft hemicylinder given a half-length 25 % too long warns.
+/// The brush finger `i` of [`common::BRUSH_FINGERS`]: noisy (2 %, twice per force) and
+/// noise-free rows at its own shape and half-length do not warn; the noise-free misfit
+/// stays under half of [`MATERIAL_RMS`]. The soft hemicylinder given a half-length 25 % too long warns.
 fn brush_finger(i: usize) {
-    let (name, toml, l) = BRUSH[i];
+    let (name, toml, l) = common::BRUSH_FINGERS[i];
     let shape = if toml.contains("\"disc\"") {
         FingerShape::Disc
     } else {
@@ -328,7 +273,7 @@ fn brush_finger(i: usize) {
 #[test]
 fn brush_fingers_fitted_at_their_shape_do_not_warn() {
     std::thread::scope(|s| {
-        for i in 0..BRUSH.len() {
+        for i in 0..common::BRUSH_FINGERS.len() {
             s.spawn(move || brush_finger(i));
         }
     });

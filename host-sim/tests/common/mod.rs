@@ -1,6 +1,7 @@
 //! What the tests share: whether QEMU and the firmware they need are there, the check of
-//! a generated block of a page, a run of the `host-sim` binary, and a sample's command
-//! parts as an array. Each test binary uses part of it.
+//! a generated block of a page, a run of the `host-sim` binary, a sample's command parts
+//! as an array, and the brush fingers the calibration tests use. Each test binary uses
+//! part of it.
 #![allow(dead_code)]
 
 use host_sim::link::qemu;
@@ -102,3 +103,60 @@ pub fn parts(s: &Sample) -> [f32; 10] {
         p.n_load_n,
     ]
 }
+
+/// The three brush fingers `brush_calibration.rs` calibrates softgrip on (a soft and a
+/// stiff hemicylinder, a hemisphere) and `calibrate_contradiction.rs` fits at their shape:
+/// name, finger TOML, half-length [m].
+pub const BRUSH_FINGERS: [(&str, &str, f64); 3] = [
+    (
+        "soft hemicylinder",
+        r#"
+        [finger]
+        model = "brush"
+        shape = "rect"
+        mu = 0.8
+        half_length_m = 0.01
+        young_modulus_pa = 3e5
+        [finger.brush]
+        radius_m = 0.01
+        layer_thickness_m = 0.003
+        mu_kinetic = 0.7
+        height_m = 0.003
+        "#,
+        0.01,
+    ),
+    (
+        "stiff hemicylinder",
+        r#"
+        [finger]
+        model = "brush"
+        shape = "rect"
+        mu = 0.6
+        half_length_m = 0.008
+        young_modulus_pa = 2e6
+        [finger.brush]
+        radius_m = 0.008
+        layer_thickness_m = 0.002
+        stiffening_exponent = 1.5
+        mu_kinetic = 0.55
+        height_m = 0.002
+        "#,
+        0.008,
+    ),
+    (
+        "hemisphere",
+        r#"
+        [finger]
+        model = "brush"
+        shape = "disc"
+        mu = 1.0
+        young_modulus_pa = 5e5
+        [finger.brush]
+        radius_m = 0.009
+        layer_thickness_m = 0.003
+        mu_kinetic = 0.9
+        height_m = 0.003
+        "#,
+        0.01,
+    ),
+];

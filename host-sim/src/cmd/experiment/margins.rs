@@ -157,73 +157,69 @@ fn fail(e: String) -> CliError {
     CliError::Failed(format!("--out: {e}"))
 }
 
-/// Each cycle's slip on its axis (log10) against the fraction, with the threshold.
-fn plot_cyclic(path: &Path, rows: &[CyclicRow]) -> Result<PathBuf, CliError> {
-    let panels: Vec<Panel> = [
-        (Axis::Force, "log10 slide per cycle [m]", RATCHET_SLIDE_M),
-        (
-            Axis::Torsion,
-            "log10 turn per cycle [rad]",
-            RATCHET_TURN_RAD,
-        ),
-    ]
-    .into_iter()
-    .map(|(axis, label, threshold)| {
-        let points = rows
-            .iter()
-            .filter(|r| r.axis == axis && r.cycle > 0)
-            .map(|r| {
-                let slip = if axis == Axis::Force {
-                    r.slide_m
-                } else {
-                    r.turn_rad
-                };
-                (r.fraction, lg(slip))
-            })
-            .collect();
-        panel(
-            format!("Cyclic {} (every cycle)", axis.name()),
-            label,
-            points,
-            threshold,
-        )
-    })
-    .collect();
+/// One panel per axis (force, then torsion) with its y label and threshold from `axes`,
+/// titled `title(axis)`, of `points(axis)` (fractions against log10 slips), to `path`.
+fn plot_axes(
+    path: &Path,
+    title: impl Fn(Axis) -> String,
+    axes: [(&str, f64); 2],
+    points: impl Fn(Axis) -> Vec<(f64, f64)>,
+) -> Result<PathBuf, CliError> {
+    let panels: Vec<Panel> = [Axis::Force, Axis::Torsion]
+        .into_iter()
+        .zip(axes)
+        .map(|(axis, (label, threshold))| panel(title(axis), label, points(axis), threshold))
+        .collect();
     plot_panels(path, &panels).map_err(fail)?;
     Ok(path.to_path_buf())
 }
 
+/// Each cycle's slip on its axis (log10) against the fraction, with the threshold.
+fn plot_cyclic(path: &Path, rows: &[CyclicRow]) -> Result<PathBuf, CliError> {
+    plot_axes(
+        path,
+        |axis| format!("Cyclic {} (every cycle)", axis.name()),
+        [
+            ("log10 slide per cycle [m]", RATCHET_SLIDE_M),
+            ("log10 turn per cycle [rad]", RATCHET_TURN_RAD),
+        ],
+        |axis| {
+            rows.iter()
+                .filter(|r| r.axis == axis && r.cycle > 0)
+                .map(|r| {
+                    let slip = if axis == Axis::Force {
+                        r.slide_m
+                    } else {
+                        r.turn_rad
+                    };
+                    (r.fraction, lg(slip))
+                })
+                .collect()
+        },
+    )
+}
+
 /// Each hold's rate at its end (log10) against the fraction, with the threshold.
 fn plot_hold(path: &Path, rows: &[HoldRow]) -> Result<PathBuf, CliError> {
-    let panels: Vec<Panel> = [
-        (
-            Axis::Force,
-            "log10 slide rate at the end [m/s]",
-            CREEP_SLIDE_M_S,
-        ),
-        (
-            Axis::Torsion,
-            "log10 turn rate at the end [rad/s]",
-            CREEP_TURN_RAD_S,
-        ),
-    ]
-    .into_iter()
-    .map(|(axis, label, threshold)| {
-        let points = rows
-            .iter()
-            .filter(|r| r.axis == axis && r.time_s > 0.0)
-            .map(|r| {
-                let rate = if axis == Axis::Force {
-                    r.slide_rate_m_s
-                } else {
-                    r.turn_rate_rad_s
-                };
-                (r.fraction, lg(rate))
-            })
-            .collect();
-        panel(format!("Hold {}", axis.name()), label, points, threshold)
-    })
-    .collect();
-    plot_panels(path, &panels).map_err(fail)?;
-    Ok(path.to_path_buf())
+    plot_axes(
+        path,
+        |axis| format!("Hold {}", axis.name()),
+        [
+            ("log10 slide rate at the end [m/s]", CREEP_SLIDE_M_S),
+            ("log10 turn rate at the end [rad/s]", CREEP_TURN_RAD_S),
+        ],
+        |axis| {
+            rows.iter()
+                .filter(|r| r.axis == axis && r.time_s > 0.0)
+                .map(|r| {
+                    let rate = if axis == Axis::Force {
+                        r.slide_rate_m_s
+                    } else {
+                        r.turn_rate_rad_s
+                    };
+                    (r.fraction, lg(rate))
+                })
+                .collect()
+        },
+    )
 }

@@ -513,6 +513,15 @@ impl Calibration {
         self
     }
 
+    /// The least safety factor that covers `μ`'s interval
+    /// (docs/decisions/calibration-fit.md): `μ / μ_lo`, since a controller told `μ` at
+    /// safety `s` holds a true friction down to `μ/s`. `None` without an interval (a
+    /// refitted `μ`). A drift the user expects multiplies it.
+    pub fn safety_for_mu(&self) -> Option<f64> {
+        let lo = self.mu.ci95?[0];
+        (lo > 0.0 && lo.is_finite() && self.mu.value >= lo).then(|| self.mu.value / lo)
+    }
+
     /// The finger's shape.
     pub fn finger_shape(&self) -> FingerShape {
         FingerShape::from_name(self.shape).unwrap_or(FingerShape::Rect)

@@ -75,6 +75,7 @@ pub fn finger_toml(cal: &Calibration, source: &str) -> String {
     if let Some(fc) = &cal.friction_contact {
         let _ = writeln!(s, "# {}.", fc.describe(cal.half_length_m, sig4));
     }
+    let _ = writeln!(s, "# {}.", safety_line(cal));
     let skew = cal.skew();
     if skew.is_some() {
         let _ = writeln!(s, "effects = [\"skewed_pressure\"]");
@@ -152,6 +153,7 @@ pub fn report_text(cal: &Calibration) -> String {
             }
         }
     }
+    let _ = writeln!(s, "{}", safety_line(cal));
     let f = &cal.fit;
     let [fo, to, mi] = f.onsets_force_torsion_mixed;
     let _ = writeln!(
@@ -173,6 +175,19 @@ pub fn report_text(cal: &Calibration) -> String {
         let _ = writeln!(s, "{}", fc.describe(cal.half_length_m, sig4));
     }
     s
+}
+
+/// What safety factor `μ`'s interval needs ([`Calibration::safety_for_mu`]), for the
+/// text report and the finger TOML's heading.
+fn safety_line(cal: &Calibration) -> String {
+    match cal.safety_for_mu() {
+        Some(s) => format!(
+            "safety >= {} covers mu's 95 % interval (mu/mu_lo); a drift of mu you expect \
+             multiplies it",
+            sig4(s)
+        ),
+        None => "safety for mu: no interval on mu to cover".to_string(),
+    }
 }
 
 /// The lack-of-fit test's line of the text report.

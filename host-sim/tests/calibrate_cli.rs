@@ -181,6 +181,25 @@ fn conservative_moves_each_parameter_toward_less_capacity() {
     assert_eq!(cons["skewed_pressure"]["delta_over_a"]["value"], 0.0);
 }
 
+#[test]
+fn the_safety_factor_mu_needs_is_mu_over_its_lower_bound() {
+    let d = dir("safety-for-mu");
+    experiment(&d, &[]);
+    let (fit, cons) = (json(&d, &[]), json(&d, &["--conservative"]));
+    let mu = fit["mu"]["value"].as_f64().unwrap();
+    let lo = fit["mu"]["ci95"][0].as_f64().unwrap();
+    let s = fit["safety_for_mu"].as_f64().unwrap();
+    assert_eq!(s, mu / lo);
+    // 2 % noise: an interval of a few per cent, so a factor just above 1.
+    assert!(s > 1.0 && s < 1.1, "{s}");
+    // The conservative finger's mu is the lower bound already: nothing left to cover.
+    assert_eq!(cons["safety_for_mu"].as_f64(), Some(1.0));
+    let (code, text, err) = calibrate(&d, &[]);
+    assert_eq!(code, 0, "{err}");
+    let line = format!("safety >= {:.3} covers mu's 95 % interval", s);
+    assert!(text.contains(&line), "{line}\n{text}");
+}
+
 fn scene_with(finger_toml: &str) -> Scene {
     let text = format!("duration_s = 1.0\n{finger_toml}\n[object]\nmass_kg = 0.1\n");
     Scene::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"))

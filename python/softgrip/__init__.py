@@ -255,8 +255,9 @@ def calibrate(
 
     Returns ``host-sim calibrate --format json``'s object: each parameter under its TOML
     name (``mu``, ``k``, ``c``, ``gamma``, ``skewed_pressure``) as ``{"value", "ci95",
-    "identified", "reason"}``, plus ``fit`` and ``margins`` (each ``"not measured"``
-    without its file); and ``finger_toml`` (the text ``--out``
+    "identified", "reason"}``, plus ``fit``, ``margins`` (each ``"not measured"``
+    without its file) and ``safety_for_mu`` (``mu / mu_lo``, the least safety factor that
+    covers ``mu``'s 95 % interval; a drift of ``mu`` you expect multiplies it); and ``finger_toml`` (the text ``--out``
     writes) and ``controller``, the fitted finger as ``Controller`` keywords.
 
     Raises ``ConfigError`` naming ``indentation`` or ``slip`` for a bad file (its message

@@ -128,6 +128,7 @@ pub(crate) fn calibrate(
     let report = Report {
         calibration: &cal,
         margins: &m,
+        safety_for_mu: cal.safety_for_mu(),
     };
     let heading = format!("{} and {}", source_name(&indentation), source_name(&slip));
     let json = serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))?;

@@ -48,6 +48,9 @@ def test_conservative_lowers_mu(lab):
     low = softgrip.calibrate(lab / "indentation.csv", lab / "slip.csv", conservative=True)
     assert low["mu"]["value"] == fit["mu"]["ci95"][0] < fit["mu"]["value"]
     assert low["conservative"] is True
+    # The safety factor mu's interval needs: none left once mu is at its lower bound.
+    assert fit["safety_for_mu"] == fit["mu"]["value"] / fit["mu"]["ci95"][0] > 1.0
+    assert low["safety_for_mu"] == 1.0
 
 
 def test_friction_contact_equals_the_cli(host_sim, lab):

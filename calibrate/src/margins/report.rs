@@ -177,4 +177,6 @@ pub struct Report<'a> {
     pub calibration: &'a Calibration,
     /// Its margins.
     pub margins: &'a Margins,
+    /// [`Calibration::safety_for_mu`]: the least safety factor `μ`'s interval needs.
+    pub safety_for_mu: Option<f64>,
 }

@@ -35,6 +35,7 @@ pub fn json(cal: &Calibration, margins: &Margins) -> Result<String, CliError> {
     serde_json::to_string_pretty(&Report {
         calibration: cal,
         margins,
+        safety_for_mu: cal.safety_for_mu(),
     })
     .map_err(|e| CliError::Failed(e.to_string()))
 }

@@ -43,6 +43,7 @@ mod defmt_sink;
 mod exit;
 #[cfg(not(any(feature = "fast-math", feature = "soft-sqrt")))]
 mod fpu_sqrt;
+mod interrupts;
 #[cfg(feature = "board")]
 mod pwm;
 #[cfg(feature = "sqrt-check")]

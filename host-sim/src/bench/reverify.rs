@@ -139,7 +139,7 @@ fn whole_options(key: &Key, out: &Path, quiet: bool) -> Result<BenchOptions, Str
 }
 
 /// The options of the rerun: the bench `key` describes, on `seed` alone, each controller
-/// at its default ([`defaults_only`]).
+/// at its default (`defaults_only`).
 pub fn rerun_options(
     key: &Key,
     seed: u64,

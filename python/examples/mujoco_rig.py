@@ -390,12 +390,14 @@ def read_slip(path: pathlib.Path) -> list[tuple[float, float, float]]:
     return [tuple(float(x) for x in line.split(",")) for line in lines if line.strip()]
 
 
-def calibrate(out: pathlib.Path) -> dict:
+def calibrate(out: pathlib.Path, margins: bool = False) -> dict:
     """``softgrip.calibrate`` on the rig's files in ``out`` (a disc; μ from the pure-force
-    onsets and ``c`` refitted to the torsion onsets, ``friction_contact``); writes
+    onsets and ``c`` refitted to the torsion onsets, ``friction_contact``; with
+    ``margins``, the finger's margins from ``hold.csv`` and ``cyclic.csv``); writes
     ``out/finger.toml`` and returns the fit."""
+    files = dict(cyclic=out / "cyclic.csv", hold=out / "hold.csv") if margins else {}
     fit = softgrip.calibrate(
-        out / "indentation.csv", out / "slip.csv", shape="disc", friction_contact=True
+        out / "indentation.csv", out / "slip.csv", shape="disc", friction_contact=True, **files
     )
     (out / "finger.toml").write_text(fit["finger_toml"])
     return fit
@@ -476,6 +478,10 @@ def main(argv: Optional[list[str]] = None) -> int:
         help="[N]; more than one makes the fit take gamma from the overlap",
     )
     ap.add_argument("--calibrate", action="store_true", help="fit finger.toml (needs all)")
+    ap.add_argument(
+        "--margins", action="store_true",
+        help="with all: also run hold and cyclic, and --calibrate fits the margins from them",
+    )
     ap.add_argument("--grasp", action="store_true", help="run the grasp on it (needs --calibrate)")
     ap.add_argument(
         "--config", action="append", default=[], metavar="KEY=VALUE",
@@ -484,8 +490,8 @@ def main(argv: Optional[list[str]] = None) -> int:
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     args = ap.parse_args(argv)
     floats = lambda text: [float(x) for x in text.split(",") if x.strip()]  # noqa: E731
-    if (args.calibrate or args.grasp) and args.kind != "all":
-        ap.error("--calibrate and --grasp need the kind all")
+    if (args.calibrate or args.grasp or args.margins) and args.kind != "all":
+        ap.error("--calibrate, --grasp and --margins need the kind all")
     if args.grasp and not args.calibrate:
         ap.error("--grasp needs --calibrate")
     config = {}
@@ -500,9 +506,11 @@ def main(argv: Optional[list[str]] = None) -> int:
         rig, args.kind, floats(args.forces), floats(args.ratios),
         floats(args.indentation_forces),
     )
+    if args.margins:
+        rows.update(hold=hold(rig), cyclic=cyclic(rig))
     report: dict = dict(files=[str(p) for p in write_csvs(rows, args.out)], mujoco_steps=rig.steps)
     if args.calibrate:
-        fit = calibrate(args.out)
+        fit = calibrate(args.out, margins=args.margins)
         report["finger_toml"] = str(args.out / "finger.toml")
         report["calibration"] = summary(fit, rows["slip"], rig.mu_t)
         if args.grasp:

@@ -123,6 +123,24 @@ def test_the_grasp_holds_on_the_calibrated_finger(pipeline):
         assert run["over_least"] > 1.0, (name, run)  # the constant was chosen knowing the scene
 
 
+def test_the_rigs_margins_bring_the_grasp_within_1_10_of_the_least_constant(rig, tmp_path):
+    """Calibrated with the rig's own hold and cyclic rows, the finger carries MuJoCo's
+    margins (no ratchet, no turn: cyclic and disc torsion factors 1), and the grasp at
+    softgrip's defaults holds with at most 1.10 x the least constant grip that holds."""
+    import contextlib
+    import io
+
+    buf = io.StringIO()
+    args = ["all", "--margins", "--out", str(tmp_path), "--calibrate", "--grasp", "--json"]
+    with contextlib.redirect_stdout(buf):
+        assert rig.main(args) == 0
+    finger = softgrip.load_finger(tmp_path / "finger.toml")
+    assert finger["cyclic_factor"] == 1.0 and finger["disc_torsion_factor"] == 1.0, finger
+    run = json.loads(buf.getvalue())["grasp"]["runs"]["calibrated"]
+    assert run["held"], run
+    assert 1.0 < run["over_least"] <= 1.10, run
+
+
 def test_the_overlap_is_not_the_contact_friction_sees(rig, tmp_path):
     """With the overlap at every force the fit takes gamma ≈ 1/2 from MuJoCo's soft
     constraint, and the finger mispredicts the torsion onsets by tens of per cent: why the

@@ -203,7 +203,7 @@ pub struct Frame {
 /// axis (force, then torsion) the static onset first ([`onsets`]: `frame.onsets` ramps at
 /// `frame.normal_n`), each recorded as `onset_row(axis, N [N], (f_t [N], m_n [N·m]))`,
 /// then `test(axis, fraction, fraction·reference, noise, rows)` for each of the frame's
-/// fractions, the reference being the onsets' mean ([`reference`]). An axis whose ramp
+/// fractions, the reference being the onsets' mean ([`reference()`]). An axis whose ramp
 /// never slips records nothing.
 pub fn per_axis<R>(
     rig: &dyn TimedRig,
